@@ -1,0 +1,77 @@
+#include "cl/cl_context.h"
+
+#include "cl/cl_error.h"
+
+namespace clpt {
+
+Buffer::Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::string& label)
+    : bytes_(bytes) {
+  if (bytes > ctx.device().max_alloc_bytes) {
+    throw Error(ExitCode::DeviceError,
+                "buffer '" + label + "' needs " + std::to_string(bytes) + " bytes but " +
+                    ctx.where() + " allows at most " + std::to_string(ctx.device().max_alloc_bytes) +
+                    " per allocation");
+  }
+  mem_ = MemHandle(CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags, bytes, nullptr));
+}
+
+Kernel::Kernel(cl_program program, const std::string& name, const std::string& where)
+    : kernel_(CL_CREATE(where, clCreateKernel, program, name.c_str())), name_(name), where_(where) {}
+
+void Kernel::set_arg_bytes(cl_uint index, size_t size, const void* value) {
+  CL_CALL(where_ + " (kernel " + name_ + ", argument " + std::to_string(index) + ")",
+          clSetKernelArg(kernel_.get(), index, size, value));
+}
+
+DeviceContext::DeviceContext(const DeviceInfo& device) : device_(device), where_(device.label()) {
+  const cl_context_properties props[] = {
+      CL_CONTEXT_PLATFORM, reinterpret_cast<cl_context_properties>(device.platform), 0};
+  context_ = ContextHandle(
+      CL_CREATE(where_, clCreateContext, props, 1, &device_.id, nullptr, nullptr));
+  // clCreateCommandQueue is deprecated in OpenCL 2.0 but is the one call every 1.2+ driver has.
+  queue_ = QueueHandle(CL_CREATE(where_, clCreateCommandQueue, context_.get(), device_.id,
+                                 CL_QUEUE_PROFILING_ENABLE));
+}
+
+ProgramHandle DeviceContext::build_program(const std::string& source, const std::string& options,
+                                           const std::string& label) {
+  const char* text = source.c_str();
+  const size_t length = source.size();
+  ProgramHandle program(
+      CL_CREATE(where_, clCreateProgramWithSource, context_.get(), 1, &text, &length));
+  const cl_int err = clBuildProgram(program.get(), 1, &device_.id, options.c_str(), nullptr, nullptr);
+  if (err != CL_SUCCESS) {
+    size_t size = 0;
+    clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+    std::string log(size, '\0');
+    clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+    throw Error(ExitCode::DeviceError, "clBuildProgram failed with " + cl_error_name(err) + " on " +
+                                           where_ + " for program '" + label + "' (options: " +
+                                           options + "); build log:\n" + log);
+  }
+  return program;
+}
+
+void DeviceContext::launch(const Kernel& kernel, size_t global_size, size_t local_size,
+                           const char* label) {
+  if (global_size == 0) return;
+  if (local_size) global_size = (global_size + local_size - 1) / local_size * local_size;
+  CL_CALL(where_ + " (" + label + ")",
+          clEnqueueNDRangeKernel(queue_.get(), kernel.get(), 1, nullptr, &global_size,
+                                 local_size ? &local_size : nullptr, 0, nullptr, nullptr));
+}
+
+void DeviceContext::write(const Buffer& buffer, const void* data, size_t bytes) {
+  CL_CALL(where_, clEnqueueWriteBuffer(queue_.get(), buffer.get(), CL_TRUE, 0, bytes, data, 0,
+                                       nullptr, nullptr));
+}
+
+void DeviceContext::read(const Buffer& buffer, void* data, size_t bytes) {
+  CL_CALL(where_, clEnqueueReadBuffer(queue_.get(), buffer.get(), CL_TRUE, 0, bytes, data, 0,
+                                      nullptr, nullptr));
+}
+
+void DeviceContext::finish() { CL_CALL(where_, clFinish(queue_.get())); }
+
+}  // namespace clpt

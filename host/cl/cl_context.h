@@ -1,0 +1,116 @@
+// RAII over the OpenCL objects clpt uses: one context and in-order queue per device, programs
+// built from source with their log, buffers and kernels. Every call goes through CL_CALL, so
+// failures name the call, the CL error and the device.
+#pragma once
+
+#include <CL/cl.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+
+#include "cl/cl_device.h"
+
+namespace clpt {
+
+// Owns one reference to a cl_* handle, released with `Release` on destruction.
+template <typename Handle, cl_int (*Release)(Handle)>
+class ClHandle {
+ public:
+  ClHandle() = default;
+  explicit ClHandle(Handle h) : h_(h) {}
+  ClHandle(ClHandle&& o) noexcept : h_(std::exchange(o.h_, nullptr)) {}
+  ClHandle& operator=(ClHandle&& o) noexcept {
+    if (this != &o) {
+      reset();
+      h_ = std::exchange(o.h_, nullptr);
+    }
+    return *this;
+  }
+  ClHandle(const ClHandle&) = delete;
+  ClHandle& operator=(const ClHandle&) = delete;
+  ~ClHandle() { reset(); }
+  Handle get() const { return h_; }
+  void reset() {
+    if (h_) Release(h_);
+    h_ = nullptr;
+  }
+
+ private:
+  Handle h_ = nullptr;
+};
+
+using ContextHandle = ClHandle<cl_context, clReleaseContext>;
+using QueueHandle = ClHandle<cl_command_queue, clReleaseCommandQueue>;
+using ProgramHandle = ClHandle<cl_program, clReleaseProgram>;
+using KernelHandle = ClHandle<cl_kernel, clReleaseKernel>;
+using MemHandle = ClHandle<cl_mem, clReleaseMemObject>;
+
+class DeviceContext;
+
+// A device buffer of `bytes` bytes.
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::string& label);
+  cl_mem get() const { return mem_.get(); }
+  size_t bytes() const { return bytes_; }
+
+ private:
+  MemHandle mem_;
+  size_t bytes_ = 0;
+};
+
+// A kernel entry point of a built program; arguments set by index.
+class Kernel {
+ public:
+  Kernel() = default;
+  Kernel(cl_program program, const std::string& name, const std::string& where);
+  template <typename T>
+  void set_arg(cl_uint index, const T& value) {
+    set_arg_bytes(index, sizeof(T), &value);
+  }
+  void set_arg(cl_uint index, const Buffer& buffer) {
+    cl_mem m = buffer.get();
+    set_arg_bytes(index, sizeof(cl_mem), &m);
+  }
+  const std::string& name() const { return name_; }
+  cl_kernel get() const { return kernel_.get(); }
+
+ private:
+  void set_arg_bytes(cl_uint index, size_t size, const void* value);
+  KernelHandle kernel_;
+  std::string name_;
+  std::string where_;
+};
+
+// One device with its context and in-order, profiling-enabled queue.
+class DeviceContext {
+ public:
+  explicit DeviceContext(const DeviceInfo& device);
+  const DeviceInfo& device() const { return device_; }
+  const std::string& where() const { return where_; }
+  cl_context context() const { return context_.get(); }
+  cl_command_queue queue() const { return queue_.get(); }
+
+  // Builds a program from full source text with the given options. On failure throws
+  // Error(DeviceError) whose message holds the device's build log.
+  ProgramHandle build_program(const std::string& source, const std::string& options,
+                              const std::string& label);
+
+  // 1-D launch over global_size work-items (rounded up to a multiple of local_size when given;
+  // 0 lets the driver choose). `label` names the launch in errors.
+  void launch(const Kernel& kernel, size_t global_size, size_t local_size, const char* label);
+
+  void write(const Buffer& buffer, const void* data, size_t bytes);
+  void read(const Buffer& buffer, void* data, size_t bytes);
+  void finish();
+
+ private:
+  DeviceInfo device_;
+  std::string where_;
+  ContextHandle context_;
+  QueueHandle queue_;
+};
+
+}  // namespace clpt

@@ -1,0 +1,138 @@
+#include "cl/cl_device.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "cl/cl_error.h"
+
+namespace clpt {
+namespace {
+
+std::string platform_string(cl_platform_id platform, cl_platform_info param) {
+  size_t size = 0;
+  CL_CALL("platform", clGetPlatformInfo(platform, param, 0, nullptr, &size));
+  std::string value(size, '\0');
+  CL_CALL("platform", clGetPlatformInfo(platform, param, size, value.data(), nullptr));
+  while (!value.empty() && value.back() == '\0') value.pop_back();
+  return value;
+}
+
+std::string device_string(cl_device_id device, cl_device_info param, const std::string& where) {
+  size_t size = 0;
+  CL_CALL(where, clGetDeviceInfo(device, param, 0, nullptr, &size));
+  std::string value(size, '\0');
+  CL_CALL(where, clGetDeviceInfo(device, param, size, value.data(), nullptr));
+  while (!value.empty() && value.back() == '\0') value.pop_back();
+  return value;
+}
+
+template <typename T>
+T device_value(cl_device_id device, cl_device_info param, const std::string& where) {
+  T value{};
+  CL_CALL(where, clGetDeviceInfo(device, param, sizeof(T), &value, nullptr));
+  return value;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, cl_device_id id) {
+  DeviceInfo d;
+  d.platform = platform;
+  d.id = id;
+  d.platform_name = platform_name;
+  const std::string where = "a device of platform '" + platform_name + "'";
+  d.name = device_string(id, CL_DEVICE_NAME, where);
+  const std::string self = "device '" + d.name + "'";
+  d.vendor = device_string(id, CL_DEVICE_VENDOR, self);
+  const auto type = device_value<cl_device_type>(id, CL_DEVICE_TYPE, self);
+  d.is_gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
+  d.is_cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
+  d.type = d.is_gpu ? "GPU" : d.is_cpu ? "CPU" : (type & CL_DEVICE_TYPE_ACCELERATOR) ? "accelerator" : "other";
+  d.compute_units = device_value<cl_uint>(id, CL_DEVICE_MAX_COMPUTE_UNITS, self);
+  d.clock_mhz = device_value<cl_uint>(id, CL_DEVICE_MAX_CLOCK_FREQUENCY, self);
+  d.global_mem_bytes = device_value<cl_ulong>(id, CL_DEVICE_GLOBAL_MEM_SIZE, self);
+  d.local_mem_bytes = device_value<cl_ulong>(id, CL_DEVICE_LOCAL_MEM_SIZE, self);
+  d.max_alloc_bytes = device_value<cl_ulong>(id, CL_DEVICE_MAX_MEM_ALLOC_SIZE, self);
+  d.max_work_group_size = device_value<size_t>(id, CL_DEVICE_MAX_WORK_GROUP_SIZE, self);
+  const std::string extensions = device_string(id, CL_DEVICE_EXTENSIONS, self);
+  d.fp64 = extensions.find("cl_khr_fp64") != std::string::npos;
+  d.opencl_c_version = device_string(id, CL_DEVICE_OPENCL_C_VERSION, self);
+  d.driver_version = device_string(id, CL_DRIVER_VERSION, self);
+  d.device_version = device_string(id, CL_DEVICE_VERSION, self);
+  return d;
+}
+
+}  // namespace
+
+std::string DeviceInfo::label() const { return "device '" + name + "' (" + platform_name + ")"; }
+
+std::vector<DeviceInfo> list_devices() {
+  cl_uint platform_count = 0;
+  const cl_int err = clGetPlatformIDs(0, nullptr, &platform_count);
+  if (err == -1001 /* CL_PLATFORM_NOT_FOUND_KHR */ || platform_count == 0) {
+    throw Error(ExitCode::DeviceError,
+                "no OpenCL platform found: install an OpenCL driver (e.g. Debian's pocl-opencl-icd "
+                "for the CPU) and check /etc/OpenCL/vendors");
+  }
+  cl_check(err, "clGetPlatformIDs", "the OpenCL ICD loader");
+  std::vector<cl_platform_id> platforms(platform_count);
+  CL_CALL("the OpenCL ICD loader", clGetPlatformIDs(platform_count, platforms.data(), nullptr));
+
+  std::vector<DeviceInfo> devices;
+  for (cl_platform_id platform : platforms) {
+    const std::string platform_name = platform_string(platform, CL_PLATFORM_NAME);
+    cl_uint count = 0;
+    const cl_int e = clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 0, nullptr, &count);
+    if (e == CL_DEVICE_NOT_FOUND || count == 0) continue;
+    cl_check(e, "clGetDeviceIDs", "platform '" + platform_name + "'");
+    std::vector<cl_device_id> ids(count);
+    CL_CALL("platform '" + platform_name + "'",
+            clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, count, ids.data(), nullptr));
+    for (cl_device_id id : ids) {
+      devices.push_back(describe(platform, platform_name, id));
+      devices.back().index = static_cast<int>(devices.size()) - 1;
+    }
+  }
+  if (devices.empty()) throw Error(ExitCode::DeviceError, "no OpenCL device found on any platform");
+  return devices;
+}
+
+const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices) {
+  const DeviceInfo* best = nullptr;
+  for (const DeviceInfo& d : devices) {
+    if (!d.is_gpu) continue;
+    const double score = double(d.compute_units) * d.clock_mhz;
+    if (!best || score > double(best->compute_units) * best->clock_mhz) best = &d;
+  }
+  if (best) return *best;
+  for (const DeviceInfo& d : devices)
+    if (d.is_cpu) return d;
+  return devices.front();
+}
+
+const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
+  const std::string s = lower(spec);
+  if (s.empty() || s == "best") return best_device(devices);
+  if (std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    const size_t index = std::stoul(s);
+    if (index < devices.size()) return devices[index];
+  } else if (s == "gpu") {
+    const DeviceInfo& best = best_device(devices);
+    if (best.is_gpu) return best;
+  } else if (s == "cpu") {
+    for (const DeviceInfo& d : devices)
+      if (d.is_cpu) return d;
+  } else {
+    for (const DeviceInfo& d : devices)
+      if (lower(d.name).find(s) != std::string::npos) return d;
+  }
+  std::string message = "--device '" + spec + "': no such device; available:";
+  for (const DeviceInfo& d : devices)
+    message += "\n  " + std::to_string(d.index) + ": " + d.type + " " + d.label();
+  throw Error(ExitCode::Usage, message);
+}
+
+}  // namespace clpt

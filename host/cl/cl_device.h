@@ -1,0 +1,49 @@
+// OpenCL platform and device discovery: what `clpt devices` prints and what `--device` picks.
+#pragma once
+
+#include <CL/cl.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clpt {
+
+struct DeviceInfo {
+  int index = 0;  // position in list_devices(), as `clpt devices` shows it
+  cl_platform_id platform = nullptr;
+  cl_device_id id = nullptr;
+  std::string platform_name;
+  std::string name;
+  std::string vendor;
+  std::string type;  // "GPU", "CPU", "accelerator", "other"
+  bool is_gpu = false;
+  bool is_cpu = false;
+  cl_uint compute_units = 0;
+  cl_uint clock_mhz = 0;
+  cl_ulong global_mem_bytes = 0;
+  cl_ulong local_mem_bytes = 0;
+  cl_ulong max_alloc_bytes = 0;
+  size_t max_work_group_size = 0;
+  bool fp64 = false;  // cl_khr_fp64
+  std::string opencl_c_version;
+  std::string driver_version;
+  std::string device_version;
+
+  // "name (platform)" for messages.
+  std::string label() const;
+};
+
+// Every device of every platform, in platform order. Throws when there is no platform at all.
+std::vector<DeviceInfo> list_devices();
+
+// The default device: the GPU with the largest compute_units * clock, else the first CPU, else the
+// first device.
+const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices);
+
+// Resolves a --device value: an index from `clpt devices`, "cpu" or "gpu" (the first of that type,
+// "gpu" meaning the best GPU), "best", or a case-insensitive substring of the device name.
+// Throws Error(Usage) naming the option and listing the devices when nothing matches.
+const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec);
+
+}  // namespace clpt

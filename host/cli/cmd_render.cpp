@@ -1,0 +1,152 @@
+// `clpt render SCENE`: load the scene, apply command-line overrides, render, write the outputs.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "cli/commands.h"
+#include "kernels/kernel_options.h"
+#include "render/film_raw.h"
+#include "render/render_session.h"
+#include "scene/scene_loader.h"
+#include "util/error.h"
+#ifdef CLPT_WITH_OIIO
+#include "io/image_io.h"
+#endif
+
+namespace clpt {
+namespace {
+
+struct RenderOptions {
+  std::string scene_path;
+  std::string output;
+  std::optional<int64_t> spp;
+  std::optional<double> time_s;
+  std::optional<uint64_t> seed;
+  std::string device;
+  std::optional<int> width, height, max_bounces;
+  std::optional<std::string> sampler;
+  bool quiet = false;
+  bool progress = false;
+  bool explain = false;
+};
+
+// Where the outputs go: -o, else SCENE_STEM.exr in the current directory. Checked before any work.
+std::string output_path(const RenderOptions& o) {
+  std::string path = o.output;
+  if (path.empty()) path = std::filesystem::path(o.scene_path).stem().string() + ".exr";
+  const std::string ext = std::filesystem::path(path).extension().string();
+#ifdef CLPT_WITH_OIIO
+  if (ext != ".exr" && ext != ".pfm")
+    throw Error(ExitCode::Usage, "-o " + path + ": the output must be an .exr (or a raw .pfm) file");
+#else
+  if (ext != ".pfm")
+    throw Error(ExitCode::Usage, "-o " + path + ": this clpt was built without OpenImageIO "
+                                 "(CLPT_WITH_OIIO=OFF) and writes only raw .pfm films");
+#endif
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw Error(ExitCode::Usage, "-o " + path + ": directory '" + dir.string() + "' does not exist");
+  return path;
+}
+
+void apply_overrides(const RenderOptions& o, RenderSettings& s) {
+  if (o.spp) s.spp = *o.spp;
+  if (o.seed) s.seed = *o.seed;
+  if (o.width) s.width = *o.width;
+  if (o.height) s.height = *o.height;
+  if (o.max_bounces) s.max_bounces = *o.max_bounces;
+  if (o.sampler) s.sampler = *o.sampler == "grid" ? Sampler::Grid : Sampler::Jitter;
+  if (s.sampler == Sampler::Grid && (o.spp || !o.time_s) && s.spp % 16 != 0)
+    throw Error(ExitCode::Usage, "--spp " + std::to_string(s.spp) +
+                                     ": the grid sampler needs a multiple of 16 samples per pixel "
+                                     "(--sampler jitter takes any count)");
+}
+
+void write_outputs(const std::string& path, const Film& film, const Scene& scene,
+                   const RenderReport& report, bool quiet) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  std::string written = path;
+  if (ext == ".pfm") {
+    write_film_pfm(path, film);
+    written += " (and its .var.pfm)";
+  } else {
+#ifdef CLPT_WITH_OIIO
+    const ImageMetadata metadata = {
+        {"clpt:version", CLPT_VERSION},
+        {"clpt:spp", std::to_string(report.spp)},
+        {"clpt:seed", std::to_string(scene.settings.seed)},
+        {"clpt:scene", scene.file},
+        {"clpt:scene_hash", scene.file_hash},
+        {"clpt:device", report.device},
+        {"clpt:precision", "robust (float32, IEEE maths)"},
+        {"clpt:estimator", scene.settings.estimator},
+        {"clpt:sampler", sampler_name(scene.settings.sampler)},
+        {"clpt:max_bounces", std::to_string(scene.settings.max_bounces)},
+        {"clpt:dropped_samples", std::to_string(report.dropped)},
+    };
+    written += " and " + write_render_outputs(path, film, metadata);
+#endif
+  }
+  if (!quiet) std::printf("wrote %s\n", written.c_str());
+}
+
+void print_summary(const Scene& scene, const RenderReport& r) {
+  const double seconds = std::max(1e-9, r.render_seconds);
+  std::printf("rendered %s: %dx%d, %llu spp, %d passes on %s\n", scene.file.c_str(),
+              scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
+              r.device.c_str());
+  std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
+              "kernel build %.2f s\n",
+              r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
+              r.paths ? double(r.segments) / double(r.paths) : 0.0, r.build_seconds);
+  if (r.dropped)
+    std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
+}
+
+int run(const RenderOptions& o) {
+  const std::string out = output_path(o);
+  Scene scene = load_scene_file(o.scene_path);
+  apply_overrides(o, scene.settings);
+  if (o.explain) std::printf("%s", explain_kernel_options(features_for_scene(scene)).c_str());
+
+  RenderRequest request;
+  request.device = o.device;
+  request.time_limit_s = o.time_s.value_or(0.0);
+  request.spp_given = o.spp.has_value() || !o.time_s.has_value();
+  request.show_progress = !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
+  RenderReport report;
+  request.scene = scene;
+  const Film film = run_render(request, report);
+  if (!o.quiet) print_summary(scene, report);
+  write_outputs(out, film, scene, report, o.quiet);
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_render_command(CLI::App& app) {
+  auto o = std::make_shared<RenderOptions>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene file to OUT.exr (+ OUT.png preview)");
+  cmd->add_option("scene", o->scene_path, "Scene file (TOML), e.g. scenes/diffuse.toml")->required();
+  cmd->add_option("-o,--output", o->output, "Output EXR (default: SCENE_STEM.exr here); .pfm for a raw film");
+  cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's)")->check(CLI::Range(int64_t(1), int64_t(1) << 31));
+  cmd->add_option("--time", o->time_s, "Stop after this many seconds (with --spp: whichever comes first)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--seed", o->seed, "Random seed (default: the scene's)");
+  cmd->add_option("--device", o->device, "Device: index from `clpt devices`, cpu, gpu, or a name substring");
+  cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--sampler", o->sampler, "jitter (stratified) or grid (the book's 4x4 centres)")
+      ->check(CLI::IsMember({"jitter", "grid"}));
+  cmd->add_flag("-q,--quiet", o->quiet, "Print nothing but errors");
+  cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
+  cmd->add_flag("--explain", o->explain, "Print how the kernel was specialised for the scene");
+  return [o] { return run(*o); };
+}
+
+}  // namespace clpt

@@ -1,0 +1,14 @@
+// Subcommands of the `clpt` command line. Each registers its options on a CLI11 app and runs;
+// main.cpp only dispatches and maps clpt::Error to exit codes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace clpt {
+
+// Adds the subcommand to `app`; the returned function runs it after parsing (returns exit code).
+std::function<int()> add_render_command(CLI::App& app);
+std::function<int()> add_devices_command(CLI::App& app);
+
+}  // namespace clpt

@@ -1,0 +1,28 @@
+// The one place that decides how a kernel is specialised for a scene: which features are
+// compiled in and the exact build options. `clpt render --explain` prints its answer.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace clpt {
+
+struct KernelFeatures {
+  bool phong = true;  // CLPT_HAS_PHONG
+  bool glass = true;  // CLPT_HAS_GLASS
+};
+
+// Only what the scene uses. (Lambertian and emitters are always present.)
+KernelFeatures features_for_scene(const Scene& scene);
+
+// Every feature compiled in: the generic kernel.
+KernelFeatures generic_features();
+
+// OpenCL build options for these features.
+std::string kernel_build_options(const KernelFeatures& features);
+
+// Human-readable: one line per decision, then the options.
+std::string explain_kernel_options(const KernelFeatures& features);
+
+}  // namespace clpt

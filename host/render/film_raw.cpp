@@ -1,0 +1,56 @@
+#include "render/film_raw.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "util/error.h"
+
+namespace clpt {
+
+std::string temporary_path_for(const std::string& path) {
+  const std::filesystem::path p(path);
+  std::filesystem::path tmp = p.parent_path() / ("." + p.stem().string() + ".clpt-tmp-" +
+                                                 std::to_string(::getpid()) + p.extension().string());
+  return tmp.string();
+}
+
+void commit_temporary(const std::string& tmp, const std::string& path) {
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
+  }
+}
+
+void write_pfm_atomic(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  const std::string tmp = temporary_path_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + std::strerror(errno));
+    // Negative scale: little-endian floats. PFM rows run bottom to top.
+    out << "PF\n" << width << " " << height << "\n-1.0\n";
+    for (int row = height - 1; row >= 0; --row)
+      out.write(reinterpret_cast<const char*>(&rgb[size_t(row) * width * 3]),
+                std::streamsize(sizeof(float)) * width * 3);
+    if (!out.flush()) {
+      std::remove(tmp.c_str());
+      throw Error(ExitCode::OutputError, path + ": cannot write output: write failed");
+    }
+  }
+  commit_temporary(tmp, path);
+}
+
+void write_film_pfm(const std::string& path, const Film& film) {
+  std::string variance_path = path;
+  const size_t dot = variance_path.rfind(".pfm");
+  variance_path = (dot == std::string::npos ? variance_path : variance_path.substr(0, dot)) + ".var.pfm";
+  write_pfm_atomic(variance_path, film.width(), film.height(), film.variance_rgb());
+  write_pfm_atomic(path, film.width(), film.height(), film.mean_rgb());
+}
+
+}  // namespace clpt

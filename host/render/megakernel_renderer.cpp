@@ -1,0 +1,34 @@
+#include "render/megakernel_renderer.h"
+
+#include <chrono>
+
+#include "kernels/kernel_source.h"
+
+namespace clpt {
+
+MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene,
+                                       const KernelFeatures& features, size_t local_size)
+    : ctx_(ctx), build_options_(kernel_build_options(features)), local_size_(local_size) {
+  const auto start = std::chrono::steady_clock::now();
+  program_ = ctx.build_program(assemble_kernel_source("megakernel.cl"), build_options_, "megakernel.cl");
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  kernel_ = Kernel(program_.get(), "render_megakernel", ctx.where());
+
+  const size_t sphere_bytes = scene.spheres.size() * sizeof(GpuSphere);
+  spheres_ = Buffer(ctx, sphere_bytes, CL_MEM_READ_ONLY, "spheres");
+  ctx.write(spheres_, scene.spheres.data(), sphere_bytes);
+}
+
+std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams& params) {
+  const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
+  if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
+  kernel_.set_arg(0, spheres_);
+  kernel_.set_arg(1, params);
+  kernel_.set_arg(2, pass_);
+  ctx_.launch(kernel_, params.pixel_count, local_size_, "render_megakernel");
+  std::vector<GpuPixelPass> out(params.pixel_count);
+  ctx_.read(pass_, out.data(), bytes);
+  return out;
+}
+
+}  // namespace clpt

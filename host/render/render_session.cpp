@@ -1,0 +1,98 @@
+#include "render/render_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "cl/cl_context.h"
+#include "cl/cl_device.h"
+#include "kernels/kernel_options.h"
+#include "render/megakernel_renderer.h"
+#include "render/progress.h"
+#include "scene/device_scene.h"
+
+namespace clpt {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
+  const RenderSettings& s = scene.settings;
+  GpuRenderParams p{};
+  p.camera = ds.camera;
+  p.width = static_cast<clpt_u32>(s.width);
+  p.height = static_cast<clpt_u32>(s.height);
+  p.sphere_count = static_cast<clpt_u32>(ds.spheres.size());
+  p.max_bounces = static_cast<clpt_u32>(s.max_bounces);
+  p.seed_lo = static_cast<clpt_u32>(s.seed & 0xffffffffu);
+  p.seed_hi = static_cast<clpt_u32>(s.seed >> 32);
+  p.sampler = s.sampler == Sampler::Grid ? CLPT_SAMPLER_GRID : CLPT_SAMPLER_JITTER;
+  p.ray_epsilon = ds.ray_epsilon;
+  p.pixel_begin = 0;
+  p.pixel_count = p.width * p.height;
+  return p;
+}
+
+}  // namespace
+
+uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
+                           double target_s, uint32_t granularity) {
+  double want = samples_per_pixel_per_s > 0 ? samples_per_pixel_per_s * target_s : granularity;
+  want = std::clamp(want, double(granularity), double(kMaxSamplesPerPass));
+  uint64_t n = uint64_t(want) / granularity * granularity;
+  if (target > 0) n = std::min<uint64_t>(n, target - done);
+  return static_cast<uint32_t>(std::max<uint64_t>(n, 1));
+}
+
+Film run_render(const RenderRequest& request, RenderReport& report) {
+  const Scene& scene = request.scene;
+  const RenderSettings& settings = scene.settings;
+
+  // 1. The device, and a context on it.
+  const std::vector<DeviceInfo> devices = list_devices();
+  DeviceContext ctx(select_device(devices, request.device));
+  report.device = ctx.where();
+
+  // 2. The scene as the kernels see it, and a kernel specialised for it.
+  const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
+  const KernelFeatures features = request.generic_kernel ? generic_features() : features_for_scene(scene);
+  MegakernelRenderer renderer(ctx, device_scene, features, request.local_size);
+  report.build_options = renderer.build_options();
+  report.build_seconds = renderer.build_seconds();
+
+  // 3. Passes until the sample count or the time budget is reached.
+  Film film(settings.width, settings.height);
+  GpuRenderParams params = make_params(scene, device_scene);
+  const uint64_t target = request.spp_given ? uint64_t(settings.spp) : 0;
+  const uint32_t granularity = settings.sampler == Sampler::Grid ? 16u : 1u;
+  const double pass_target_s = 0.5;
+  Progress progress(request.show_progress);
+  const auto t0 = std::chrono::steady_clock::now();
+  double rate = 0;  // samples per pixel per second
+  while (target == 0 || film.samples_per_pixel() < target) {
+    const double elapsed = seconds_since(t0);
+    if (request.time_limit_s > 0 && report.passes > 0 && elapsed >= request.time_limit_s) break;
+    double pass_s = pass_target_s;
+    if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - elapsed));
+    params.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
+    params.samples_per_pass = next_pass_samples(film.samples_per_pixel(), target, rate, pass_s, granularity);
+    const auto pass_start = std::chrono::steady_clock::now();
+    film.add_pass(renderer.render_pass(params), 0, params.samples_per_pass);
+    rate = params.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    ++report.passes;
+    progress.update(report.passes, film.samples_per_pixel(), target,
+                    double(film.total_samples()) / std::max(1e-9, seconds_since(t0)),
+                    seconds_since(t0), request.time_limit_s);
+  }
+  progress.finish();
+  report.render_seconds = seconds_since(t0);
+  report.spp = film.samples_per_pixel();
+  report.paths = film.total_samples();
+  report.segments = film.total_segments();
+  report.dropped = film.dropped_samples();
+  return film;
+}
+
+}  // namespace clpt

@@ -1,0 +1,44 @@
+// One render from a loaded scene to a finished film: pick the device, specialise and build the
+// kernel, run passes until the sample count or time budget is reached, accumulate in double.
+#pragma once
+
+#include <string>
+
+#include "render/film.h"
+#include "scene/scene.h"
+
+namespace clpt {
+
+struct RenderRequest {
+  Scene scene;               // settings already merged with command-line overrides
+  std::string device = "";   // --device value ("" = best)
+  double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
+  bool spp_given = true;     // false when only --time bounds the render
+  bool show_progress = false;
+  bool generic_kernel = false;  // compile every feature, not only what the scene needs
+  size_t local_size = 0;        // work-group size; 0 lets the driver choose
+};
+
+struct RenderReport {
+  std::string device;          // label of the device used
+  std::string build_options;
+  double build_seconds = 0;    // program build, including any driver cache hit
+  double render_seconds = 0;   // passes only
+  int passes = 0;
+  uint64_t spp = 0;
+  uint64_t paths = 0;
+  uint64_t segments = 0;
+  uint64_t dropped = 0;        // samples with NaN/Inf radiance, excluded from the film
+};
+
+// Blocking. Throws clpt::Error on device or build failure.
+Film run_render(const RenderRequest& request, RenderReport& report);
+
+// Samples per pass: the first pass is one sampler period, later passes aim at target_s seconds
+// from the measured rate, capped by what is left and by kMaxSamplesPerPass.
+uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
+                           double target_s, uint32_t granularity);
+
+constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
+
+}  // namespace clpt

@@ -1,0 +1,63 @@
+#include "scene/device_scene.h"
+
+#include <cmath>
+
+namespace clpt {
+namespace {
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
+Vec3 normalize(const Vec3& a) { return scale(a, 1.0 / length(a)); }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+void store(float out[3], const Vec3& v) {
+  for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
+}
+
+GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_position) {
+  GpuSphere g{};
+  const Vec3 towards_anchor = sub(anchor, s.center);
+  // A sphere centred on the anchor has no closest point: any direction will do.
+  const Vec3 n0 = length(towards_anchor) > 0 ? normalize(towards_anchor) : Vec3{0, 1, 0};
+  const Vec3 s0 = add(s.center, scale(n0, s.radius));
+  store(g.surface_point, sub(s0, camera_position));
+  store(g.surface_normal, n0);
+  g.radius = static_cast<float>(s.radius);
+  g.material = static_cast<clpt_u32>(s.material.type);
+  store(g.reflectance, s.material.reflectance);
+  g.phong_exponent = static_cast<float>(s.material.phong_exponent);
+  store(g.emission, s.material.emission);
+  g.ior = static_cast<float>(s.material.ior);
+  return g;
+}
+
+}  // namespace
+
+double ray_epsilon_for(const Camera& camera) {
+  return 1e-5 * length(sub(camera.look_at, camera.position));
+}
+
+DeviceScene make_device_scene(const Scene& scene, int width, int height) {
+  DeviceScene out;
+  const Camera& cam = scene.camera;
+  for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
+
+  // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
+  const Vec3 dir = normalize(sub(cam.look_at, cam.position));
+  const double pi = 3.14159265358979323846;
+  const double sensor_height = 2.0 * std::tan(cam.vertical_fov_deg * pi / 360.0);
+  const double sensor_width = sensor_height * width / height;
+  const Vec3 right = scale(normalize(cross(dir, cam.up)), sensor_width);
+  const Vec3 up = scale(normalize(cross(right, dir)), sensor_height);
+  store(out.camera.sensor_center, dir);
+  store(out.camera.sensor_right, right);
+  store(out.camera.sensor_up, up);
+  out.ray_epsilon = static_cast<float>(ray_epsilon_for(cam));
+  return out;
+}
+
+}  // namespace clpt

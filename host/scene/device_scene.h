@@ -1,0 +1,28 @@
+// Conversion of a loaded Scene (double, world space) into what the kernels read (float,
+// camera-relative), done once on the host in double precision.
+#pragma once
+
+#include <vector>
+
+#include "kernels/types.h"
+#include "scene/scene.h"
+
+namespace clpt {
+
+struct DeviceScene {
+  std::vector<GpuSphere> spheres;
+  GpuCamera camera{};
+  float ray_epsilon = 0;  // world units; see ray_epsilon_for()
+};
+
+// Each sphere becomes (s0, n0, r): s0 the surface point closest to the camera's look-at point,
+// n0 the outward normal there, both relative to the camera position. Then every float the
+// kernels see is of the size of distances inside the scene, never of a huge radius or a large
+// world coordinate.
+DeviceScene make_device_scene(const Scene& scene, int width, int height);
+
+// Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
+// the value numerics.md measured as robust there), so it scales with the scene.
+double ray_epsilon_for(const Camera& camera);
+
+}  // namespace clpt

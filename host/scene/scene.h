@@ -1,0 +1,73 @@
+// The scene as loaded from a file: validated, in double precision, in world units, with the
+// source position of every value so that later checks can still point at the file.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace clpt {
+
+using Vec3 = std::array<double, 3>;
+
+// Where a value came from, for error messages ("file:line:column").
+struct SourcePosition {
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string str() const;  // "file:line:column"
+};
+
+enum class MaterialType : uint32_t { Lambertian = 0, Phong = 1, Glass = 2, Emitter = 3 };
+const char* material_type_name(MaterialType type);
+
+struct Material {
+  MaterialType type = MaterialType::Lambertian;
+  Vec3 reflectance{0, 0, 0};  // albedo rho per channel, in [0, 1] (Lambertian, Phong, glass)
+  double phong_exponent = 0;  // Phong lobe exponent n >= 0
+  double ior = 1.5;           // glass index of refraction inside; outside is 1
+  Vec3 emission{0, 0, 0};     // emitted radiance per channel (emitters), >= 0
+};
+
+struct Sphere {
+  std::string name;  // from the file, or "sphere[i]"
+  Vec3 center{0, 0, 0};
+  double radius = 1;  // world units, > 0
+  Material material;
+  SourcePosition where;  // position of the [[sphere]] table
+};
+
+// Pinhole camera. The book's camera: a sensor sensor_height units high placed sensor_distance in
+// front of the pinhole, i.e. vertical_fov = 2 atan(sensor_height / 2 / sensor_distance).
+struct Camera {
+  Vec3 position{0, 0, 0};
+  Vec3 look_at{0, 0, -1};
+  Vec3 up{0, 1, 0};
+  double vertical_fov_deg = 36.869897645844021;
+};
+
+enum class Sampler : uint32_t { Jitter = 0, Grid = 1 };
+const char* sampler_name(Sampler sampler);
+
+// Everything a render needs besides geometry; the file sets defaults, the command line overrides.
+struct RenderSettings {
+  int width = 640;
+  int height = 480;
+  int64_t spp = 16;         // samples per pixel
+  uint64_t seed = 1;        // key of the counter-based RNG
+  int max_bounces = 9;      // camera ray + at most max_bounces bounce rays
+  Sampler sampler = Sampler::Jitter;
+  std::string estimator = "book";
+};
+
+struct Scene {
+  std::string file;        // path it was loaded from
+  std::string file_hash;   // FNV-1a 64 of the file's bytes, hex
+  Camera camera;
+  RenderSettings settings;
+  std::vector<Sphere> spheres;
+};
+
+}  // namespace clpt

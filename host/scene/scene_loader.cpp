@@ -1,0 +1,496 @@
+// TOML -> Scene: reads the file, parses it with toml++, checks structure, key names and value
+// types, and records where every value sits; scene_validate.cpp then judges the values.
+// The format is described in the README; every error is clpt::Error(ExitCode::BadScene) with a
+// "FILE:LINE:COLUMN: KEY: MESSAGE" message.
+#include "scene/scene_loader.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <initializer_list>
+#include <memory>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "scene/scene_validate.h"
+#include "util/error.h"
+#include "util/hash.h"
+
+namespace clpt {
+
+std::string SourcePosition::str() const {
+  // A position without a line (never produced by the loader) still names the file.
+  if (line <= 0) return file;
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+const char* material_type_name(MaterialType type) {
+  switch (type) {
+    case MaterialType::Lambertian:
+      return "lambertian";
+    case MaterialType::Phong:
+      return "phong";
+    case MaterialType::Glass:
+      return "glass";
+    case MaterialType::Emitter:
+      return "emitter";
+  }
+  return "unknown";
+}
+
+const char* sampler_name(Sampler sampler) {
+  switch (sampler) {
+    case Sampler::Jitter:
+      return "jitter";
+    case Sampler::Grid:
+      return "grid";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using scene_detail::fail;
+using scene_detail::SourceMap;
+
+constexpr MaterialType kMaterialTypes[] = {MaterialType::Lambertian, MaterialType::Phong,
+                                           MaterialType::Glass, MaterialType::Emitter};
+constexpr Sampler kSamplers[] = {Sampler::Jitter, Sampler::Grid};
+
+// Levenshtein distance; keys are short, so the O(n m) table is cheap.
+size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t substitution = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+      diagonal = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
+    }
+  }
+  return row[b.size()];
+}
+
+// The candidate within edit distance 2 of `word` (closest first, then first listed), or nothing.
+// A candidate must keep at least one of its characters: "x" does not suggest "up".
+std::optional<std::string> closest_match(std::string_view word,
+                                         const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  size_t best_distance = 3;
+  for (const std::string& candidate : candidates) {
+    const size_t distance = edit_distance(word, candidate);
+    if (distance < best_distance && distance < candidate.size()) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+// "'a', 'b' or 'c'"
+std::string quoted_list(const std::vector<std::string>& words) {
+  std::string out;
+  for (size_t i = 0; i < words.size(); ++i) {
+    if (i > 0) out += i + 1 == words.size() ? " or " : ", ";
+    out += "'" + words[i] + "'";
+  }
+  return out;
+}
+
+// A near miss gets "unknown KIND 'phnog'; did you mean 'phong'?"; anything else gets
+// "unknown KIND 'WORD' (ALTERNATIVES)", so the user always learns what would be accepted.
+std::string unknown_word_message(const std::string& kind, const std::string& word,
+                                 const std::vector<std::string>& known,
+                                 const std::string& alternatives) {
+  const std::string head = "unknown " + kind + " '" + word + "'";
+  if (const auto match = closest_match(word, known))
+    return head + "; did you mean '" + *match + "'?";
+  return head + " (" + alternatives + ")";
+}
+
+// English name of a TOML value's type, with its article, for "expected X, got Y" messages.
+std::string type_description(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    case toml::node_type::none:
+      break;
+  }
+  return "nothing";
+}
+
+std::string join_key(const std::string& parent, std::string_view key) {
+  return parent.empty() ? std::string(key) : parent + "." + std::string(key);
+}
+
+// Reads the keys of one TOML table, whose dotted path is `path` ("" for the document root).
+// Every value it hands out has passed its type check and has its position recorded in the
+// SourceMap under its dotted key. The table's own position `where` stands in for nodes that
+// carry none (tables toml++ created implicitly, e.g. [camera] when only [camera.x] is written).
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, SourcePosition where, SourceMap& sources)
+      : table_(table), path_(std::move(path)), where_(std::move(where)), sources_(sources) {
+    if (!path_.empty()) sources_.record(path_, where_);
+  }
+
+  const std::string& path() const { return path_; }
+  const SourcePosition& where() const { return where_; }
+  std::string key_path(std::string_view key) const { return join_key(path_, key); }
+
+  SourcePosition position_of(const toml::node& node) const { return position_of(node.source()); }
+  SourcePosition position_of(const toml::source_region& source) const {
+    if (source.begin.line == 0) return where_;
+    return SourcePosition{where_.file, static_cast<int>(source.begin.line),
+                          static_cast<int>(source.begin.column)};
+  }
+
+  // Rejects the key earliest in the file that is not in `known`, suggesting a near miss.
+  void reject_unknown_keys(const std::vector<std::string>& known) const;
+
+  // The value under `key` or nullptr; records its position.
+  const toml::node* get(std::string_view key) const;
+  [[noreturn]] void fail_missing(std::string_view key) const {
+    fail(where_, path_, "missing required key '" + std::string(key) + "'");
+  }
+  [[noreturn]] void fail_type(std::string_view key, const toml::node& node,
+                              const std::string& expected) const {
+    fail(position_of(node), key_path(key),
+         "expected " + expected + ", got " + type_description(node));
+  }
+
+  std::optional<int64_t> integer(std::string_view key) const;
+  std::optional<double> number(std::string_view key) const;
+  std::optional<std::string> string(std::string_view key) const;
+  std::optional<Vec3> vec3(std::string_view key) const;
+  // The sub-table under `key`: a [header] table or an inline { } table.
+  std::optional<TableReader> table(std::string_view key) const;
+  // A reader for a table reached other than by key (an element of an array of tables).
+  TableReader child(const toml::table& table, std::string path, SourcePosition where) const {
+    return TableReader(table, std::move(path), std::move(where), sources_);
+  }
+
+  double required_number(std::string_view key) const {
+    if (auto value = number(key)) return *value;
+    fail_missing(key);
+  }
+  Vec3 required_vec3(std::string_view key) const {
+    if (auto value = vec3(key)) return *value;
+    fail_missing(key);
+  }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  SourcePosition where_;
+  SourceMap& sources_;
+};
+
+void TableReader::reject_unknown_keys(const std::vector<std::string>& known) const {
+  // toml::table iterates in key order; report the first unknown key in file order instead.
+  const toml::key* first = nullptr;
+  for (const auto& [key, value] : table_) {
+    if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
+    const auto& at = key.source().begin;
+    if (!first || at < first->source().begin) first = &key;
+  }
+  if (!first) return;
+  const std::string word(first->str());
+  std::string alternatives = "expected one of: ";
+  for (size_t i = 0; i < known.size(); ++i) alternatives += (i > 0 ? ", " : "") + known[i];
+  fail(position_of(first->source()), key_path(word),
+       unknown_word_message("key", word, known, alternatives));
+}
+
+const toml::node* TableReader::get(std::string_view key) const {
+  const toml::node* node = table_.get(key);
+  if (node) sources_.record(key_path(key), position_of(*node));
+  return node;
+}
+
+std::optional<int64_t> TableReader::integer(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  if (const auto* value = node->as_integer()) return value->get();
+  fail_type(key, *node, "an integer");
+}
+
+std::optional<double> TableReader::number(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  if (const auto* value = node->as_floating_point()) return value->get();
+  if (const auto* value = node->as_integer()) return static_cast<double>(value->get());
+  fail_type(key, *node, "a number");
+}
+
+std::optional<std::string> TableReader::string(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  if (const auto* value = node->as_string()) return value->get();
+  fail_type(key, *node, "a string");
+}
+
+std::optional<Vec3> TableReader::vec3(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  const toml::array* array = node->as_array();
+  if (!array) fail_type(key, *node, "an array of 3 numbers");
+  if (array->size() != 3)
+    fail(position_of(*node), key_path(key),
+         "expected an array of 3 numbers, got " + std::to_string(array->size()) + " elements");
+  Vec3 out{};
+  for (size_t i = 0; i < 3; ++i) {
+    const toml::node& element = *array->get(i);
+    if (const auto* f = element.as_floating_point())
+      out[i] = f->get();
+    else if (const auto* n = element.as_integer())
+      out[i] = static_cast<double>(n->get());
+    else
+      fail(position_of(element), key_path(key),
+           "expected an array of 3 numbers, element " + std::to_string(i) + " is " +
+               type_description(element));
+  }
+  return out;
+}
+
+std::optional<TableReader> TableReader::table(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  const toml::table* sub = node->as_table();
+  if (!sub) fail_type(key, *node, "a table");
+  return TableReader(*sub, key_path(key), position_of(*node), sources_);
+}
+
+// Integer settings: type-checked here, range-checked before narrowing to the field's type.
+template <typename Field>
+void read_integer_setting(const TableReader& reader, std::string_view key, Field& field) {
+  const toml::node* node = reader.get(key);
+  if (const auto value = reader.integer(key)) {
+    scene_detail::check_integer_setting(reader.key_path(key), *value, reader.position_of(*node));
+    field = static_cast<Field>(*value);
+  }
+}
+
+void read_image(const TableReader& image, RenderSettings& settings) {
+  image.reject_unknown_keys({"width", "height"});
+  read_integer_setting(image, "width", settings.width);
+  read_integer_setting(image, "height", settings.height);
+}
+
+Sampler parse_sampler(const TableReader& render, const std::string& name) {
+  std::vector<std::string> names;
+  for (Sampler s : kSamplers) {
+    if (name == sampler_name(s)) return s;
+    names.emplace_back(sampler_name(s));
+  }
+  fail(render.position_of(*render.get("sampler")), render.key_path("sampler"),
+       unknown_word_message("sampler", name, names, "expected " + quoted_list(names)));
+}
+
+void read_render(const TableReader& render, RenderSettings& settings) {
+  render.reject_unknown_keys({"spp", "seed", "max_bounces", "sampler", "estimator"});
+  read_integer_setting(render, "spp", settings.spp);
+  read_integer_setting(render, "seed", settings.seed);
+  read_integer_setting(render, "max_bounces", settings.max_bounces);
+  if (const auto name = render.string("sampler")) settings.sampler = parse_sampler(render, *name);
+  if (const auto estimator = render.string("estimator")) settings.estimator = *estimator;
+}
+
+void read_camera(const TableReader& camera_table, Camera& camera) {
+  camera_table.reject_unknown_keys({"position", "look_at", "up", "vertical_fov_deg"});
+  camera.position = camera_table.required_vec3("position");
+  camera.look_at = camera_table.required_vec3("look_at");
+  if (const auto up = camera_table.vec3("up")) camera.up = *up;
+  if (const auto fov = camera_table.number("vertical_fov_deg")) camera.vertical_fov_deg = *fov;
+}
+
+MaterialType parse_material_type(const TableReader& material) {
+  const auto name = material.string("type");
+  if (!name) material.fail_missing("type");
+  std::vector<std::string> names;
+  for (MaterialType t : kMaterialTypes) {
+    if (*name == material_type_name(t)) return t;
+    names.emplace_back(material_type_name(t));
+  }
+  fail(material.position_of(*material.get("type")), material.key_path("type"),
+       unknown_word_message("material type", *name, names, "expected " + quoted_list(names)));
+}
+
+// The parameter keys each material type takes (besides "type"); anything else in the table is
+// an error, so a parameter that does nothing for this type is caught instead of ignored.
+std::vector<std::string> material_parameters(MaterialType type) {
+  switch (type) {
+    case MaterialType::Lambertian:
+      return {"reflectance"};
+    case MaterialType::Phong:
+      return {"reflectance", "exponent"};
+    case MaterialType::Glass:
+      return {"reflectance", "ior"};
+    case MaterialType::Emitter:
+      return {"emission"};
+  }
+  return {};
+}
+
+void reject_foreign_parameters(const TableReader& material, MaterialType type) {
+  const std::vector<std::string> own = material_parameters(type);
+  for (const char* key : {"reflectance", "exponent", "ior", "emission"}) {
+    if (std::find(own.begin(), own.end(), key) != own.end() || !material.get(key)) continue;
+    fail(material.position_of(*material.get(key)), material.key_path(key),
+         "'" + std::string(key) + "' does not apply to material type '" + material_type_name(type) +
+             "'");
+  }
+}
+
+Material read_material(const TableReader& material) {
+  // Unknown keys first, against every material key, so a misspelling gets its suggestion.
+  material.reject_unknown_keys({"type", "reflectance", "exponent", "ior", "emission"});
+  Material m;
+  m.type = parse_material_type(material);
+  reject_foreign_parameters(material, m.type);
+  if (m.type == MaterialType::Emitter) {
+    m.emission = material.required_vec3("emission");
+    return m;
+  }
+  m.reflectance = material.required_vec3("reflectance");
+  if (m.type == MaterialType::Phong) m.phong_exponent = material.required_number("exponent");
+  if (m.type == MaterialType::Glass) m.ior = material.required_number("ior");
+  return m;
+}
+
+// Sphere::where: the [[sphere]] header (or inline table); if toml++ gave the table no position,
+// its first key in the file; failing that, `fallback` (the array's position).
+SourcePosition sphere_position(const toml::table& table, const TableReader& top,
+                               const SourcePosition& fallback) {
+  const toml::source_position* first = nullptr;
+  if (table.source().begin.line > 0) first = &table.source().begin;
+  for (const auto& [key, value] : table) {
+    const toml::source_position& at = key.source().begin;
+    if (!first && at.line > 0) first = &at;
+    if (first && at.line > 0 && at < *first) first = &at;
+  }
+  if (!first) return fallback;
+  return top.position_of(toml::source_region{*first, *first, nullptr});
+}
+
+Sphere read_sphere(const TableReader& sphere, size_t index) {
+  sphere.reject_unknown_keys({"name", "center", "radius", "material"});
+  Sphere s;
+  s.name = sphere.string("name").value_or("sphere[" + std::to_string(index) + "]");
+  s.center = sphere.required_vec3("center");
+  s.radius = sphere.required_number("radius");
+  const auto material = sphere.table("material");
+  if (!material) sphere.fail_missing("material");
+  s.material = read_material(*material);
+  s.where = sphere.where();
+  return s;
+}
+
+// The [[sphere]] array of tables; at least one sphere.
+std::vector<Sphere> read_spheres(const TableReader& top) {
+  const toml::node* node = top.get("sphere");
+  if (!node) fail(top.where(), "sphere", "the scene has no spheres");
+  const toml::array* array = node->as_array();
+  if (!array) top.fail_type("sphere", *node, "an array of tables ([[sphere]])");
+  if (array->empty()) fail(top.position_of(*node), "sphere", "the scene has no spheres");
+  std::vector<Sphere> spheres;
+  for (size_t i = 0; i < array->size(); ++i) {
+    const toml::node& element = *array->get(i);
+    const std::string path = "sphere[" + std::to_string(i) + "]";
+    const toml::table* table = element.as_table();
+    if (!table)
+      fail(top.position_of(element), path, "expected a table, got " + type_description(element));
+    const SourcePosition where = sphere_position(*table, top, top.position_of(element));
+    spheres.push_back(read_sphere(top.child(*table, path, where), i));
+  }
+  return spheres;
+}
+
+// Structure and types of the whole document, then the semantic rules.
+Scene build_scene(const toml::table& root, const std::string& file) {
+  SourceMap sources(file);
+  const TableReader top(root, "", SourcePosition{file, 1, 1}, sources);
+  top.reject_unknown_keys({"image", "render", "camera", "sphere"});
+  Scene scene;
+  if (const auto image = top.table("image")) read_image(*image, scene.settings);
+  if (const auto render = top.table("render")) read_render(*render, scene.settings);
+  const auto camera = top.table("camera");
+  if (!camera) fail(top.where(), "camera", "missing required table [camera]");
+  read_camera(*camera, scene.camera);
+  scene.spheres = read_spheres(top);
+  scene_detail::validate_scene(scene, sources);
+  return scene;
+}
+
+toml::table parse_toml(const std::string& text, const std::string& name) {
+  try {
+    return toml::parse(std::string_view(text), std::string_view(name));
+  } catch (const toml::parse_error& e) {
+    const toml::source_position& at = e.source().begin;
+    const SourcePosition where{name, std::max(1, static_cast<int>(at.line)),
+                               std::max(1, static_cast<int>(at.column))};
+    throw Error(ExitCode::BadScene,
+                where.str() + ": syntax error: " + std::string(e.description()));
+  }
+}
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+[[noreturn]] void fail_cannot_open(const std::string& path, int error_number) {
+  throw Error(ExitCode::BadScene,
+              path + ": cannot open scene file: " + std::strerror(error_number));
+}
+
+// The whole file as bytes (the hash is of the bytes, and toml++ wants the text in memory).
+std::string read_whole_file(const std::string& path) {
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  if (!file) fail_cannot_open(path, errno);
+  std::string text;
+  char buffer[1 << 16];
+  size_t count = 0;
+  while ((count = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, count);
+  // Reading a directory opens fine and then fails here with EISDIR.
+  if (std::ferror(file.get())) fail_cannot_open(path, errno);
+  return text;
+}
+
+}  // namespace
+
+Scene load_scene_file(const std::string& path) {
+  return load_scene_string(read_whole_file(path), path);
+}
+
+Scene load_scene_string(const std::string& text, const std::string& name) {
+  const toml::table root = parse_toml(text, name);
+  Scene scene = build_scene(root, name);
+  scene.file = name;
+  scene.file_hash = hex64(fnv1a64(text));
+  return scene;
+}
+
+}  // namespace clpt

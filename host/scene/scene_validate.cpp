@@ -1,0 +1,222 @@
+// Semantic checks on a scene the loader has already checked for structure and types: every number
+// finite and in range, at least one emitter, a camera that defines a view. Messages name the
+// dotted key and point at the value's position in the file (see SourceMap).
+#include "scene/scene_validate.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "util/error.h"
+
+namespace clpt::scene_detail {
+
+namespace {
+
+// The last component of a dotted key ("sphere[2].material.ior" -> "ior"): messages say
+// "ior must be ..." after the full key.
+std::string leaf_name(const std::string& key) {
+  const size_t dot = key.rfind('.');
+  return dot == std::string::npos ? key : key.substr(dot + 1);
+}
+
+// The enclosing key ("a.b" -> "a", "sphere[2]" -> "sphere", "sphere" -> "").
+std::string parent_key(const std::string& key) {
+  const size_t cut = key.find_last_of(".[");
+  return cut == std::string::npos ? std::string() : key.substr(0, cut);
+}
+
+std::string format_vec3(const Vec3& v) {
+  return "[" + format_number(v[0]) + ", " + format_number(v[1]) + ", " + format_number(v[2]) + "]";
+}
+
+bool all_finite(const Vec3& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3 subtract(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+// A rule violation on `key`, reported at the key's position.
+[[noreturn]] void fail_at(const SourceMap& sources, const std::string& key,
+                          const std::string& message) {
+  fail(sources.find(key), key, message);
+}
+
+void require_finite(double value, const std::string& key, const SourceMap& sources) {
+  if (!std::isfinite(value))
+    fail_at(sources, key, leaf_name(key) + " must be finite (got " + format_number(value) + ")");
+}
+
+void require_finite(const Vec3& value, const std::string& key, const SourceMap& sources) {
+  if (!all_finite(value))
+    fail_at(sources, key, leaf_name(key) + " must be finite (got " + format_vec3(value) + ")");
+}
+
+// Closed interval [min, max]; NaN and infinities are reported as such first.
+void require_in_range(double value, double min, double max, const std::string& key,
+                      const SourceMap& sources) {
+  require_finite(value, key, sources);
+  if (value < min || value > max)
+    fail_at(sources, key,
+            leaf_name(key) + " must be in [" + format_number(min) + ", " + format_number(max) +
+                "] (got " + format_number(value) + ")");
+}
+
+// Reflectance is an albedo per channel: a surface may not return more energy than it receives.
+void check_reflectance(const Vec3& rho, const std::string& key, const SourceMap& sources) {
+  require_finite(rho, key, sources);
+  for (double channel : rho)
+    if (channel < 0 || channel > 1)
+      fail_at(sources, key, "reflectance must be in [0, 1] (got " + format_vec3(rho) + ")");
+}
+
+// A black emitter is allowed nowhere: it would count as "the scene's light" and render black.
+void check_emission(const Vec3& emission, const std::string& key, const SourceMap& sources) {
+  require_finite(emission, key, sources);
+  for (double channel : emission)
+    if (channel < 0)
+      fail_at(sources, key, "emission must be >= 0 (got " + format_vec3(emission) + ")");
+  if (emission[0] == 0 && emission[1] == 0 && emission[2] == 0)
+    fail_at(sources, key, "emission must not be all zero (got " + format_vec3(emission) + ")");
+}
+
+// Only the parameters of the material's own type are checked: the loader leaves the others at
+// their defaults (it rejects keys that do not apply to the type).
+void check_material(const Material& m, const std::string& key, const SourceMap& sources) {
+  switch (m.type) {
+    case MaterialType::Lambertian:
+      check_reflectance(m.reflectance, key + ".reflectance", sources);
+      break;
+    case MaterialType::Phong:
+      check_reflectance(m.reflectance, key + ".reflectance", sources);
+      require_in_range(m.phong_exponent, 0, 1e6, key + ".exponent", sources);
+      break;
+    case MaterialType::Glass:
+      check_reflectance(m.reflectance, key + ".reflectance", sources);
+      require_in_range(m.ior, 1, 10, key + ".ior", sources);
+      break;
+    case MaterialType::Emitter:
+      check_emission(m.emission, key + ".emission", sources);
+      break;
+  }
+}
+
+void check_sphere(const Sphere& sphere, const std::string& key, const SourceMap& sources) {
+  require_finite(sphere.center, key + ".center", sources);
+  require_finite(sphere.radius, key + ".radius", sources);
+  if (!(sphere.radius > 0))
+    fail_at(sources, key + ".radius",
+            "radius must be > 0 (got " + format_number(sphere.radius) + ")");
+  check_material(sphere.material, key + ".material", sources);
+}
+
+// The camera must define a view direction, and `up` must pick a roll around it.
+void check_camera(const Camera& camera, const SourceMap& sources) {
+  require_finite(camera.position, "camera.position", sources);
+  require_finite(camera.look_at, "camera.look_at", sources);
+  require_finite(camera.up, "camera.up", sources);
+  require_finite(camera.vertical_fov_deg, "camera.vertical_fov_deg", sources);
+  if (!(camera.vertical_fov_deg > 0 && camera.vertical_fov_deg < 180))
+    fail_at(sources, "camera.vertical_fov_deg",
+            "vertical_fov_deg must be in (0, 180) (got " + format_number(camera.vertical_fov_deg) +
+                ")");
+  const Vec3 view = subtract(camera.look_at, camera.position);
+  // Relative test: a look_at one rounding step away from a far position gives no direction.
+  const double scale = std::max(length(camera.position), length(camera.look_at));
+  if (length(view) <= 1e-9 * scale || length(view) == 0)
+    fail_at(
+        sources, "camera.look_at",
+        "look_at must differ from camera.position (both are " + format_vec3(camera.look_at) + ")");
+  if (length(camera.up) == 0) fail_at(sources, "camera.up", "up must not be the zero vector");
+  const double sine = length(cross(view, camera.up)) / (length(view) * length(camera.up));
+  if (sine < 1e-6)
+    fail_at(sources, "camera.up",
+            "up must not be parallel to the view direction (got " + format_vec3(camera.up) +
+                ", view direction " + format_vec3(view) + ")");
+}
+
+void check_settings(const RenderSettings& settings, const SourceMap& sources) {
+  // The grid sampler places spp / 16 samples at each of 4 x 4 sub-pixel positions.
+  if (settings.sampler == Sampler::Grid && settings.spp % 16 != 0)
+    fail_at(sources, "render.spp",
+            "the grid sampler needs spp to be a multiple of 16 (got " +
+                std::to_string(settings.spp) + ")");
+  if (settings.estimator != "book")
+    fail_at(sources, "render.estimator",
+            "unknown estimator '" + settings.estimator + "' (only 'book' is supported)");
+}
+
+void require_emitter(const Scene& scene, const SourceMap& sources) {
+  for (const Sphere& sphere : scene.spheres)
+    if (sphere.material.type == MaterialType::Emitter) return;
+  fail(SourcePosition{sources.file(), 1, 1}, "sphere",
+       "the scene has no emitter, so every image would be black");
+}
+
+struct IntegerRule {
+  const char* key;
+  int64_t min;
+  int64_t max;
+};
+
+constexpr int64_t kNoLimit = std::numeric_limits<int64_t>::max();
+constexpr IntegerRule kIntegerRules[] = {
+    {"image.width", 1, 16384},    {"image.height", 1, 16384},      {"render.spp", 1, 1000000000},
+    {"render.seed", 0, kNoLimit}, {"render.max_bounces", 0, 1000},
+};
+
+}  // namespace
+
+void SourceMap::record(const std::string& key, const SourcePosition& where) {
+  positions_[key] = {where.line, where.column};
+}
+
+SourcePosition SourceMap::find(const std::string& key) const {
+  for (std::string k = key; !k.empty(); k = parent_key(k)) {
+    const auto it = positions_.find(k);
+    if (it != positions_.end()) return SourcePosition{file_, it->second.first, it->second.second};
+  }
+  return SourcePosition{file_, 1, 1};
+}
+
+void fail(const SourcePosition& where, const std::string& key, const std::string& message) {
+  throw Error(ExitCode::BadScene, where.str() + ": " + key + ": " + message);
+}
+
+std::string format_number(double value) {
+  // Integral values print without exponent up to 2^53 ("100000", not to_chars' "1e+05").
+  if (std::isfinite(value) && value == std::trunc(value) && std::fabs(value) < 9.007199254740992e15)
+    return std::to_string(static_cast<int64_t>(value));
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+void check_integer_setting(const std::string& key, int64_t value, const SourcePosition& where) {
+  for (const IntegerRule& rule : kIntegerRules) {
+    if (key != rule.key) continue;
+    if (value >= rule.min && value <= rule.max) return;
+    const std::string range = rule.max == kNoLimit ? " must be >= " + std::to_string(rule.min)
+                                                   : " must be in [" + std::to_string(rule.min) +
+                                                         ", " + std::to_string(rule.max) + "]";
+    fail(where, key, leaf_name(key) + range + " (got " + std::to_string(value) + ")");
+  }
+  throw std::logic_error("check_integer_setting: no rule for '" + key + "'");
+}
+
+void validate_scene(const Scene& scene, const SourceMap& sources) {
+  check_settings(scene.settings, sources);
+  check_camera(scene.camera, sources);
+  for (size_t i = 0; i < scene.spheres.size(); ++i)
+    check_sphere(scene.spheres[i], "sphere[" + std::to_string(i) + "]", sources);
+  require_emitter(scene, sources);
+}
+
+}  // namespace clpt::scene_detail

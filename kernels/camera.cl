@@ -1,0 +1,36 @@
+/* camera.cl: the book's pinhole camera and the sub-pixel samplers.
+ *
+ * Reads GpuRenderParams (camera, image size, sampler). Produces a unit direction from the
+ * pinhole, which sits at the origin of the camera-relative device frame. Image row 0 is the
+ * top of the picture; the sensor's "up" axis counts rows from the bottom, as in the book. */
+#ifndef CLPT_CAMERA_CL
+#define CLPT_CAMERA_CL
+
+/* Position inside the pixel, in [0,1)^2, of sample `sample` of pixel `pixel`.
+ * Both samplers use 4x4 strata. Grid: the stratum centres, in order (the book's sampling).
+ * Jitter: uniform inside the stratum; within each group of 16 samples the strata are visited in
+ * an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every single
+ * sample is uniform over the pixel and any sample count is unbiased. */
+inline float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
+  const uint k = sample & 15u;
+  if (sampler == CLPT_SAMPLER_GRID) {
+    return (float2)(((float)(k & 3u) + 0.5f) * 0.25f, ((float)(k >> 2) + 0.5f) * 0.25f);
+  }
+  const uint4 shuffle = philox4x32_10((uint4)(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
+  const uint stratum = ((shuffle.x | 1u) * k + shuffle.y) & 15u;
+  const float4 u = rng_uniform4(key, pixel, sample, 0u);
+  return (float2)(((float)(stratum & 3u) + u.x) * 0.25f, ((float)(stratum >> 2) + u.y) * 0.25f);
+}
+
+/* Unit direction of the camera ray through image position (col + sx, row + sy). */
+inline float3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
+                                   uint row, float2 subpixel) {
+  const float fx = ((float)col + subpixel.x) / (float)width;
+  const float fy = ((float)(height - 1u - row) + subpixel.y) / (float)height;
+  const float3 on_sensor = load_float3(camera->sensor_center) +
+                           load_float3(camera->sensor_right) * (fx - 0.5f) +
+                           load_float3(camera->sensor_up) * (fy - 0.5f);
+  return normalize(on_sensor);
+}
+
+#endif

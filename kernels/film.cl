@@ -1,0 +1,45 @@
+/* film.cl: per-pixel statistics of one pass.
+ *
+ * A work-item owns one pixel for the whole pass: it sums its samples in float (a pass holds at
+ * most a few thousand samples, so a float sum loses nothing that matters) and writes, not adds,
+ * its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
+ * dropped here (bit test, survives fast maths) and show up as valid_samples < samples. */
+#ifndef CLPT_FILM_CL
+#define CLPT_FILM_CL
+
+typedef struct PixelAccumulator {
+  float3 sum;
+  float3 sum_sq;
+  float valid_samples;
+  uint segments;
+} PixelAccumulator;
+
+inline PixelAccumulator pixel_accumulator_new(void) {
+  PixelAccumulator acc;
+  acc.sum = (float3)(0.0f);
+  acc.sum_sq = (float3)(0.0f);
+  acc.valid_samples = 0.0f;
+  acc.segments = 0u;
+  return acc;
+}
+
+inline void pixel_accumulator_add(PixelAccumulator* acc, float3 radiance, uint segments) {
+  acc->segments += segments;
+  if (!all_finite3(radiance)) return;
+  acc->sum += radiance;
+  acc->sum_sq += radiance * radiance;
+  acc->valid_samples += 1.0f;
+}
+
+inline void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
+  out->sum[0] = acc->sum.x;
+  out->sum[1] = acc->sum.y;
+  out->sum[2] = acc->sum.z;
+  out->valid_samples = acc->valid_samples;
+  out->sum_sq[0] = acc->sum_sq.x;
+  out->sum_sq[1] = acc->sum_sq.y;
+  out->sum_sq[2] = acc->sum_sq.z;
+  out->segments = acc->segments;
+}
+
+#endif

@@ -1,0 +1,117 @@
+/* types.h: every struct that crosses the host/device boundary.
+ *
+ * Valid C++17 (host, inside namespace clpt) and OpenCL C 1.2 (device). Only 32-bit scalars and
+ * fixed arrays of them: no float3 (16 bytes in OpenCL, 12 in C++) and no implicit padding, so
+ * both compilers agree on every offset. CLPT_LAYOUT_FIELDS lists every field once; the test
+ * `StructLayout.HostMatchesDevice` compares sizeof/offsetof as each side computes them.
+ *
+ * Coordinates on the device are camera-relative: the host subtracts the camera position in
+ * double precision, so the pinhole is the origin and large translations cost no precision. */
+#ifndef CLPT_TYPES_H
+#define CLPT_TYPES_H
+
+#ifdef __OPENCL_C_VERSION__
+typedef uint clpt_u32;
+#else
+#include <cstdint>
+typedef uint32_t clpt_u32;
+#endif
+
+/* Material kinds (GpuSphere.material). */
+#define CLPT_MATERIAL_LAMBERTIAN 0u
+#define CLPT_MATERIAL_PHONG 1u
+#define CLPT_MATERIAL_GLASS 2u
+#define CLPT_MATERIAL_EMITTER 3u
+
+/* Sub-pixel samplers (GpuRenderParams.sampler). */
+#define CLPT_SAMPLER_JITTER 0u /* 4x4 strata, uniform inside each, strata order shuffled per 16 */
+#define CLPT_SAMPLER_GRID 1u   /* the book's 4x4 fixed sub-pixel centres */
+
+/* One sphere and its material: 64 bytes.
+ * The sphere is stored as a point s0 on its surface near the scene, the outward unit normal n0
+ * there, and the radius, so that the centre is s0 - radius * n0. The intersection then never
+ * forms a term of size radius^2 (numerics.md: radius-1e5 walls keep their precision). */
+typedef struct GpuSphere {
+  float surface_point[3];  /* s0, camera-relative, world units */
+  float radius;            /* world units, > 0 */
+  float surface_normal[3]; /* n0, unit, outward at s0 */
+  clpt_u32 material;       /* CLPT_MATERIAL_* */
+  float reflectance[3];    /* albedo rho per channel, [0, 1] */
+  float phong_exponent;    /* Phong lobe exponent n (Phong only) */
+  float emission[3];       /* emitted radiance per channel (emitters only) */
+  float ior;               /* index of refraction inside (glass only); outside is 1 */
+} GpuSphere;
+
+/* Pinhole camera at the origin: 48 bytes. A sample at image position (fx, fy) in [0,1)^2, fy
+ * measured upwards, looks along sensor_center + sensor_right*(fx-0.5) + sensor_up*(fy-0.5). */
+typedef struct GpuCamera {
+  float sensor_center[3]; /* from the pinhole to the sensor centre, world units */
+  float pad0;
+  float sensor_right[3]; /* full sensor width, pointing right */
+  float pad1;
+  float sensor_up[3]; /* full sensor height, pointing up */
+  float pad2;
+} GpuCamera;
+
+/* Everything one pass needs besides the sphere buffer: 96 bytes, passed by value. */
+typedef struct GpuRenderParams {
+  GpuCamera camera;
+  clpt_u32 width;            /* pixels */
+  clpt_u32 height;           /* pixels */
+  clpt_u32 sphere_count;     /* entries in the sphere buffer */
+  clpt_u32 max_bounces;      /* bounce rays after the camera ray */
+  clpt_u32 seed_lo;          /* RNG key, low 32 bits of the user seed */
+  clpt_u32 seed_hi;          /* RNG key, high 32 bits */
+  clpt_u32 sample_begin;     /* global index of this pass's first sample in each pixel */
+  clpt_u32 samples_per_pass; /* samples per pixel in this pass */
+  clpt_u32 sampler;          /* CLPT_SAMPLER_* */
+  float ray_epsilon;         /* hits closer than this along a ray are ignored, world units */
+  clpt_u32 pixel_begin;      /* first pixel (row-major, row 0 at the top) of this launch */
+  clpt_u32 pixel_count;      /* pixels in this launch */
+} GpuRenderParams;
+
+/* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
+ * host adds them into double-precision sums, so no float sum ever spans more than one pass. */
+typedef struct GpuPixelPass {
+  float sum[3];          /* sum of sample radiance per channel */
+  float valid_samples;   /* samples that reached the film (exact below 2^24) */
+  float sum_sq[3];       /* sum of squared sample radiance per channel */
+  clpt_u32 segments;     /* ray segments traced (camera rays included) */
+} GpuPixelPass;
+
+/* Samples whose radiance had a NaN or Inf are dropped and counted in valid_samples' shortfall. */
+
+/* X-macro over every field, for the layout test on both sides. */
+#define CLPT_LAYOUT_FIELDS(X)                                                                     \
+  X(GpuSphere, surface_point)                                                                     \
+  X(GpuSphere, radius)                                                                            \
+  X(GpuSphere, surface_normal)                                                                    \
+  X(GpuSphere, material)                                                                          \
+  X(GpuSphere, reflectance)                                                                       \
+  X(GpuSphere, phong_exponent)                                                                    \
+  X(GpuSphere, emission)                                                                          \
+  X(GpuSphere, ior)                                                                               \
+  X(GpuCamera, sensor_center)                                                                     \
+  X(GpuCamera, sensor_right)                                                                      \
+  X(GpuCamera, sensor_up)                                                                         \
+  X(GpuRenderParams, camera)                                                                      \
+  X(GpuRenderParams, width)                                                                       \
+  X(GpuRenderParams, height)                                                                      \
+  X(GpuRenderParams, sphere_count)                                                                \
+  X(GpuRenderParams, max_bounces)                                                                 \
+  X(GpuRenderParams, seed_lo)                                                                     \
+  X(GpuRenderParams, seed_hi)                                                                     \
+  X(GpuRenderParams, sample_begin)                                                                \
+  X(GpuRenderParams, samples_per_pass)                                                            \
+  X(GpuRenderParams, sampler)                                                                     \
+  X(GpuRenderParams, ray_epsilon)                                                                 \
+  X(GpuRenderParams, pixel_begin)                                                                 \
+  X(GpuRenderParams, pixel_count)                                                                 \
+  X(GpuPixelPass, sum)                                                                            \
+  X(GpuPixelPass, valid_samples)                                                                  \
+  X(GpuPixelPass, sum_sq)                                                                         \
+  X(GpuPixelPass, segments)
+
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuSphere) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
+
+#endif /* CLPT_TYPES_H */

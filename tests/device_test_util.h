@@ -1,0 +1,35 @@
+// Helpers for tests that run the renderer's own kernel code on an OpenCL device: by default the
+// first CPU device (PoCL in CI); CLPT_TEST_DEVICE selects another like `--device` does.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cl/cl_context.h"
+
+namespace clpt::test {
+
+DeviceContext& test_device();
+
+// Program built from an embedded kernel file (e.g. "probe_stages.cl"), built once per run.
+cl_program test_program(const std::string& file, const std::string& options = "-cl-std=CL1.2");
+
+// Uploads a vector to a new read-write buffer.
+template <typename T>
+Buffer upload(const std::vector<T>& data) {
+  Buffer b(test_device(), std::max<size_t>(1, data.size()) * sizeof(T), CL_MEM_READ_WRITE, "test input");
+  if (!data.empty()) test_device().write(b, data.data(), data.size() * sizeof(T));
+  return b;
+}
+
+template <typename T>
+std::vector<T> download(const Buffer& b, size_t count) {
+  std::vector<T> out(count);
+  test_device().read(b, out.data(), count * sizeof(T));
+  return out;
+}
+
+// Directory of the source tree (for scenes and references).
+std::string source_dir();
+
+}  // namespace clpt::test
