@@ -1,0 +1,40 @@
+# Shared set-up for scripts/render.sh and scripts/test.sh: install the Debian packages clpt needs
+# (only the missing ones), then configure and build. Sourced, not run.
+
+CLPT_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
+
+# What each package is for is in README.md ("Dependencies").
+CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
+               libopenimageio-dev libtomlplusplus-dev libcli11-dev)
+CLPT_TEST_PACKAGES=(libgtest-dev)
+
+clpt_log() { printf 'clpt: %s\n' "$*" >&2; }
+
+# clpt_install_missing PACKAGE...: apt-get installs those not installed yet, as root or via sudo.
+clpt_install_missing() {
+  local missing=() p
+  for p in "$@"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [[ ${#missing[@]} -eq 0 ]] && return 0
+  local sudo=()
+  if [[ $(id -u) -ne 0 ]]; then
+    if command -v sudo >/dev/null && sudo -n true 2>/dev/null; then
+      sudo=(sudo)
+    else
+      clpt_log "these Debian packages are missing: ${missing[*]}"
+      clpt_log "install them as root (apt-get install ${missing[*]}) or give this user sudo, then re-run"
+      exit 1
+    fi
+  fi
+  clpt_log "installing missing packages: ${missing[*]}"
+  "${sudo[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# clpt_build [CMAKE_ARGS...]: configure (Release) and build everything in $CLPT_BUILD.
+clpt_build() {
+  cmake -S "$CLPT_ROOT" -B "$CLPT_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+  cmake --build "$CLPT_BUILD" -j "$(nproc)"
+}
