@@ -12,8 +12,10 @@
 #ifndef CLPT_BSDF_CL
 #define CLPT_BSDF_CL
 
+#include "maths.cl"
+
 /* Cosine-weighted direction around unit n; pdf cos(theta) / pi. */
-inline float3 sample_cosine_hemisphere(float3 n, float2 u) {
+CLPT_INLINE float3 sample_cosine_hemisphere(float3 n, float2 u) {
   const float2 circle = unit_circle(u.x);
   const float radius = sqrt(u.y);
   const float3 local_dir = (float3)(radius * circle.x, radius * circle.y, sqrt(fmax(0.0f, 1.0f - u.y)));
@@ -21,22 +23,22 @@ inline float3 sample_cosine_hemisphere(float3 n, float2 u) {
 }
 
 /* Direction around unit axis with pdf (exponent+1)/(2 pi) cos^exponent(alpha). */
-inline float3 sample_phong_lobe(float3 axis, float exponent, float2 u) {
+CLPT_INLINE float3 sample_phong_lobe(float3 axis, float exponent, float2 u) {
   const float2 circle = unit_circle(u.x);
   const float cos_alpha = pow(u.y, 1.0f / (exponent + 1.0f));
   const float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
   return to_world((float3)(sin_alpha * circle.x, sin_alpha * circle.y, cos_alpha), axis);
 }
 
-inline float3 reflect_about(float3 d, float3 n) { return d - 2.0f * dot(n, d) * n; }
+CLPT_INLINE float3 reflect_about(float3 d, float3 n) { return d - 2.0f * dot(n, d) * n; }
 
-inline float3 bsdf_lambertian_sample(float3 d, float3 n, float3 rho, float4 u, float3* weight) {
+CLPT_INLINE float3 bsdf_lambertian_sample(float3 d, float3 n, float3 rho, float4 u, float3* weight) {
   const float3 facing = dot(n, d) < 0.0f ? n : -n;
   *weight = rho;
   return sample_cosine_hemisphere(facing, u.xy);
 }
 
-inline float3 bsdf_phong_sample(float3 d, float3 n, float3 rho, float exponent, float4 u,
+CLPT_INLINE float3 bsdf_phong_sample(float3 d, float3 n, float3 rho, float exponent, float4 u,
                                 float3* weight) {
   const float3 mirror = reflect_about(d, n);
   const float3 out = sample_phong_lobe(mirror, exponent, u.xy);
@@ -47,13 +49,13 @@ inline float3 bsdf_phong_sample(float3 d, float3 n, float3 rho, float exponent, 
 
 /* Unpolarised Fresnel reflectance for relative index eta = n_from / n_to, cosines of the
  * incident and transmitted angles (both >= 0). */
-inline float fresnel_dielectric(float eta, float cos_i, float cos_t) {
+CLPT_INLINE float fresnel_dielectric(float eta, float cos_i, float cos_t) {
   const float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
   const float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
   return 0.5f * (r_s * r_s + r_p * r_p);
 }
 
-inline float3 bsdf_glass_sample(float3 d, float3 n, float3 rho, float ior, float4 u,
+CLPT_INLINE float3 bsdf_glass_sample(float3 d, float3 n, float3 rho, float ior, float4 u,
                                 float3* weight) {
   const bool entering = dot(n, d) < 0.0f;
   const float3 facing = entering ? n : -n;

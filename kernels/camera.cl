@@ -6,12 +6,16 @@
 #ifndef CLPT_CAMERA_CL
 #define CLPT_CAMERA_CL
 
+#include "types.h"
+#include "maths.cl"
+#include "rng.cl"
+
 /* Position inside the pixel, in [0,1)^2, of sample `sample` of pixel `pixel`.
  * Both samplers use 4x4 strata. Grid: the stratum centres, in order (the book's sampling).
  * Jitter: uniform inside the stratum; within each group of 16 samples the strata are visited in
  * an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every single
  * sample is uniform over the pixel and any sample count is unbiased. */
-inline float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
+CLPT_INLINE float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
   const uint k = sample & 15u;
   if (sampler == CLPT_SAMPLER_GRID) {
     return (float2)(((float)(k & 3u) + 0.5f) * 0.25f, ((float)(k >> 2) + 0.5f) * 0.25f);
@@ -23,7 +27,7 @@ inline float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample)
 }
 
 /* Unit direction of the camera ray through image position (col + sx, row + sy). */
-inline float3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
+CLPT_INLINE float3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
                                    uint row, float2 subpixel) {
   const float fx = ((float)col + subpixel.x) / (float)width;
   const float fy = ((float)(height - 1u - row) + subpixel.y) / (float)height;

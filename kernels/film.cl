@@ -7,6 +7,9 @@
 #ifndef CLPT_FILM_CL
 #define CLPT_FILM_CL
 
+#include "types.h"
+#include "maths.cl"
+
 typedef struct PixelAccumulator {
   float3 sum;
   float3 sum_sq;
@@ -14,7 +17,7 @@ typedef struct PixelAccumulator {
   uint segments;
 } PixelAccumulator;
 
-inline PixelAccumulator pixel_accumulator_new(void) {
+CLPT_INLINE PixelAccumulator pixel_accumulator_new(void) {
   PixelAccumulator acc;
   acc.sum = (float3)(0.0f);
   acc.sum_sq = (float3)(0.0f);
@@ -23,7 +26,7 @@ inline PixelAccumulator pixel_accumulator_new(void) {
   return acc;
 }
 
-inline void pixel_accumulator_add(PixelAccumulator* acc, float3 radiance, uint segments) {
+CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, float3 radiance, uint segments) {
   acc->segments += segments;
   if (!all_finite3(radiance)) return;
   acc->sum += radiance;
@@ -31,7 +34,7 @@ inline void pixel_accumulator_add(PixelAccumulator* acc, float3 radiance, uint s
   acc->valid_samples += 1.0f;
 }
 
-inline void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
+CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
   out->sum[0] = acc->sum.x;
   out->sum[1] = acc->sum.y;
   out->sum[2] = acc->sum.z;

@@ -19,21 +19,27 @@
 #ifndef CLPT_INTERSECT_CL
 #define CLPT_INTERSECT_CL
 
+#include "types.h"
+#include "maths.cl"
+
 typedef struct Hit {
   float t;      /* distance along the unit ray, INFINITY when nothing was hit */
   int sphere;   /* index into the sphere buffer, -1 when nothing was hit */
 } Hit;
 
-inline float sphere_intersect(__global const GpuSphere* sphere, float3 o, float3 d, float t_min) {
+CLPT_INLINE float sphere_intersect(__global const GpuSphere* sphere, float3 o, float3 d, float t_min) {
   const float3 s0 = load_global_float3(sphere->surface_point);
   const float3 n0 = load_global_float3(sphere->surface_normal);
   const float r = sphere->radius;
   const float3 e = s0 - o;
   const float c_prime = dot(e, e) - 2.0f * r * dot(n0, e);
   const float b_prime = dot(e, d) - r * dot(n0, d);
+  /* Outside the sphere and moving away from it: both roots are negative. */
+  if (c_prime > 0.0f && b_prime < 0.0f) return INFINITY;
   const float3 l = (e - r * n0) - b_prime * d;
-  const float l_len = length(l);
-  const float disc = (r - l_len) * (r + l_len);
+  /* r^2 - |l|^2 rounds to about r^2 2^-24 on the walls, but the error of l itself is larger
+   * there (about 2 r |c - o| 2^-24): no need to spend a sqrt on |l|. */
+  const float disc = r * r - dot(l, l);
   if (disc < 0.0f) return INFINITY;
   const float q = b_prime + copysign(sqrt(disc), b_prime);
   const float root_a = q;
@@ -45,13 +51,21 @@ inline float sphere_intersect(__global const GpuSphere* sphere, float3 o, float3
   return INFINITY;
 }
 
-/* Closest hit over all spheres but `skip` (-1: none); a linear scan, the book's scenes have 8. */
-inline Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_count, float3 o, float3 d,
+/* Closest hit over all spheres but `skip` (-1: none); a linear scan, the book's scenes have 8.
+ * A scene-specialised build fixes CLPT_SPHERE_COUNT, so the loop unrolls into straight-line code
+ * (which PoCL can vectorise across work-items); the generic build reads the count at run time. */
+CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_count, float3 o, float3 d,
                            float t_min, int skip) {
   Hit hit;
   hit.t = INFINITY;
   hit.sphere = -1;
+#ifdef CLPT_SPHERE_COUNT
+  (void)sphere_count;
+#pragma unroll
+  for (uint i = 0; i < CLPT_SPHERE_COUNT; ++i) {
+#else
   for (uint i = 0; i < sphere_count; ++i) {
+#endif
     const float t = sphere_intersect(&spheres[i], o, d, t_min);
     if (t < hit.t && (int)i != skip) {
       hit.t = t;
@@ -63,7 +77,7 @@ inline Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_count,
 
 /* Outward unit normal at the hit point o + t d: (p - c) / r = n0 + (t d - e) / r, which keeps
  * full precision for huge r (it tends to n0). */
-inline float3 sphere_normal_at(__global const GpuSphere* sphere, float3 o, float3 d, float t) {
+CLPT_INLINE float3 sphere_normal_at(__global const GpuSphere* sphere, float3 o, float3 d, float t) {
   const float3 e = load_global_float3(sphere->surface_point) - o;
   return normalize(load_global_float3(sphere->surface_normal) + (t * d - e) / sphere->radius);
 }

@@ -8,11 +8,15 @@
 
 #define CLPT_PI 3.14159265358979323846f
 
-inline float3 load_float3(const float v[3]) { return (float3)(v[0], v[1], v[2]); }
-inline float3 load_global_float3(__global const float* v) { return (float3)(v[0], v[1], v[2]); }
+/* Stage functions are inlined into every kernel: PoCL vectorises a kernel across work-items only
+ * when its body has no calls left, and GPUs avoid the call overhead. */
+#define CLPT_INLINE inline __attribute__((always_inline))
+
+CLPT_INLINE float3 load_float3(const float v[3]) { return (float3)(v[0], v[1], v[2]); }
+CLPT_INLINE float3 load_global_float3(__global const float* v) { return (float3)(v[0], v[1], v[2]); }
 
 /* (cos 2 pi u, sin 2 pi u) for u in [0, 1]. */
-inline float2 unit_circle(float u) {
+CLPT_INLINE float2 unit_circle(float u) {
   const float quadrant = rint(u * 4.0f);
   const float x = 2.0f * CLPT_PI * (u - 0.25f * quadrant); /* in [-pi/4, pi/4] */
   const float x2 = x * x;
@@ -30,7 +34,7 @@ inline float2 unit_circle(float u) {
 
 /* Orthonormal basis around unit n (Duff et al., JCGT 2017): branch-free, continuous except
  * across n.z = 0's sign. Returns tangent in *t and bitangent in *b, (t, b, n) right-handed. */
-inline void orthonormal_basis(float3 n, float3* t, float3* b) {
+CLPT_INLINE void orthonormal_basis(float3 n, float3* t, float3* b) {
   const float sign = copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z);
   const float bxy = n.x * n.y * a;
@@ -39,7 +43,7 @@ inline void orthonormal_basis(float3 n, float3* t, float3* b) {
 }
 
 /* Local direction (x, y, z around n) to world. */
-inline float3 to_world(float3 local_dir, float3 n) {
+CLPT_INLINE float3 to_world(float3 local_dir, float3 n) {
   float3 t, b;
   orthonormal_basis(n, &t, &b);
   return local_dir.x * t + local_dir.y * b + local_dir.z * n;
@@ -47,8 +51,8 @@ inline float3 to_world(float3 local_dir, float3 n) {
 
 /* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
  * may fold `x != x` to false (numerics.md). */
-inline bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
-inline bool all_finite3(float3 v) {
+CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
+CLPT_INLINE bool all_finite3(float3 v) {
   return is_finite_bits(v.x) && is_finite_bits(v.y) && is_finite_bits(v.z);
 }
 

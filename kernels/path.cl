@@ -14,6 +14,13 @@
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
 
+#include "types.h"
+#include "maths.cl"
+#include "rng.cl"
+#include "camera.cl"
+#include "intersect.cl"
+#include "bsdf.cl"
+
 #ifndef CLPT_HAS_PHONG
 #define CLPT_HAS_PHONG 1
 #endif
@@ -34,14 +41,14 @@ typedef struct PathState {
   int alive;         /* 0 once the path has ended */
 } PathState;
 
-inline RngKey rng_key_of(const GpuRenderParams* params) {
+CLPT_INLINE RngKey rng_key_of(const GpuRenderParams* params) {
   RngKey key;
   key.k0 = params->seed_lo;
   key.k1 = params->seed_hi;
   return key;
 }
 
-inline PathState path_begin(const GpuRenderParams* params, uint pixel, uint sample) {
+CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint sample) {
   const uint col = pixel % params->width;
   const uint row = pixel / params->width;
   const float2 subpixel = camera_subpixel(rng_key_of(params), params->sampler, pixel, sample);
@@ -59,14 +66,14 @@ inline PathState path_begin(const GpuRenderParams* params, uint pixel, uint samp
   return path;
 }
 
-inline Hit path_intersect(const PathState* path, __global const GpuSphere* spheres,
+CLPT_INLINE Hit path_intersect(const PathState* path, __global const GpuSphere* spheres,
                           const GpuRenderParams* params) {
   return scene_intersect(spheres, params->sphere_count, path->origin, path->direction,
                          params->ray_epsilon, path->skip_sphere);
 }
 
 /* Scatter at a non-emitting surface: new direction and throughput. */
-inline void path_scatter(PathState* path, __global const GpuSphere* sphere, int sphere_index,
+CLPT_INLINE void path_scatter(PathState* path, __global const GpuSphere* sphere, int sphere_index,
                          float3 hit_point, float3 normal, float4 u) {
   const float3 rho = load_global_float3(sphere->reflectance);
   float3 weight = (float3)(0.0f);
@@ -93,7 +100,7 @@ inline void path_scatter(PathState* path, __global const GpuSphere* sphere, int 
   if (weight.x == 0.0f && weight.y == 0.0f && weight.z == 0.0f) path->alive = 0;
 }
 
-inline void path_shade(PathState* path, Hit hit, __global const GpuSphere* spheres,
+CLPT_INLINE void path_shade(PathState* path, Hit hit, __global const GpuSphere* spheres,
                        const GpuRenderParams* params) {
   path->segments += 1u;
   if (hit.sphere < 0) { /* escaped: black background */

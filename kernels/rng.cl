@@ -7,26 +7,29 @@
 #ifndef CLPT_RNG_CL
 #define CLPT_RNG_CL
 
+#include "maths.cl"
+
 #define CLPT_DIM_STRATA 0xffffffffu
 
 typedef struct RngKey {
   uint k0, k1;
 } RngKey;
 
-inline uint philox_mulhilo(uint a, uint b, uint* hi) {
+CLPT_INLINE uint philox_mulhilo(uint a, uint b, uint* hi) {
   *hi = mul_hi(a, b);
   return a * b;
 }
 
 /* One Philox4x32 round; the 10-round function below is the standard Philox4x32-10. */
-inline uint4 philox4x32_round(uint4 ctr, uint k0, uint k1) {
+CLPT_INLINE uint4 philox4x32_round(uint4 ctr, uint k0, uint k1) {
   uint hi0, hi1;
   const uint lo0 = philox_mulhilo(0xD2511F53u, ctr.x, &hi0);
   const uint lo1 = philox_mulhilo(0xCD9E8D57u, ctr.z, &hi1);
   return (uint4)(hi1 ^ ctr.y ^ k0, lo1, hi0 ^ ctr.w ^ k1, lo0);
 }
 
-inline uint4 philox4x32_10(uint4 ctr, uint k0, uint k1) {
+CLPT_INLINE uint4 philox4x32_10(uint4 ctr, uint k0, uint k1) {
+#pragma unroll
   for (int round = 0; round < 10; ++round) {
     if (round > 0) {
       k0 += 0x9E3779B9u; /* Weyl key schedule */
@@ -38,10 +41,10 @@ inline uint4 philox4x32_10(uint4 ctr, uint k0, uint k1) {
 }
 
 /* Top 24 bits to [0, 1): every value exactly representable, never 1. */
-inline float rng_to_unit_float(uint bits) { return (float)(bits >> 8) * 0x1.0p-24f; }
+CLPT_INLINE float rng_to_unit_float(uint bits) { return (float)(bits >> 8) * 0x1.0p-24f; }
 
 /* Four independent uniforms in [0, 1) for (pixel, sample, dimension). */
-inline float4 rng_uniform4(RngKey key, uint pixel, uint sample, uint dimension) {
+CLPT_INLINE float4 rng_uniform4(RngKey key, uint pixel, uint sample, uint dimension) {
   const uint4 bits = philox4x32_10((uint4)(pixel, sample, dimension, 0u), key.k0, key.k1);
   return (float4)(rng_to_unit_float(bits.x), rng_to_unit_float(bits.y),
                   rng_to_unit_float(bits.z), rng_to_unit_float(bits.w));

@@ -53,17 +53,45 @@ ProgramHandle DeviceContext::build_program(const std::string& source, const std:
   return program;
 }
 
-void DeviceContext::launch(const Kernel& kernel, size_t global_size, size_t local_size,
-                           const char* label) {
-  if (global_size == 0) return;
+cl_event DeviceContext::enqueue(const Kernel& kernel, size_t global_size, size_t local_size,
+                                const char* label, bool want_event) {
+  if (global_size == 0) return nullptr;
   if (local_size) global_size = (global_size + local_size - 1) / local_size * local_size;
+  cl_event event = nullptr;
   CL_CALL(where_ + " (" + label + ")",
           clEnqueueNDRangeKernel(queue_.get(), kernel.get(), 1, nullptr, &global_size,
-                                 local_size ? &local_size : nullptr, 0, nullptr, nullptr));
+                                 local_size ? &local_size : nullptr, 0, nullptr,
+                                 want_event ? &event : nullptr));
+  return event;
+}
+
+void DeviceContext::launch(const Kernel& kernel, size_t global_size, size_t local_size,
+                           const char* label) {
+  enqueue(kernel, global_size, local_size, label, false);
+}
+
+EventHandle DeviceContext::launch_profiled(const Kernel& kernel, size_t global_size,
+                                           size_t local_size, const char* label) {
+  return EventHandle(enqueue(kernel, global_size, local_size, label, true));
+}
+
+double DeviceContext::event_seconds(const EventHandle& event) const {
+  if (!event.get()) return 0;
+  cl_ulong start = 0, end = 0;
+  CL_CALL(where_, clGetEventProfilingInfo(event.get(), CL_PROFILING_COMMAND_START, sizeof start,
+                                          &start, nullptr));
+  CL_CALL(where_, clGetEventProfilingInfo(event.get(), CL_PROFILING_COMMAND_END, sizeof end, &end,
+                                          nullptr));
+  return double(end - start) * 1e-9;
 }
 
 void DeviceContext::write(const Buffer& buffer, const void* data, size_t bytes) {
   CL_CALL(where_, clEnqueueWriteBuffer(queue_.get(), buffer.get(), CL_TRUE, 0, bytes, data, 0,
+                                       nullptr, nullptr));
+}
+
+void DeviceContext::write_async(const Buffer& buffer, const void* data, size_t bytes) {
+  CL_CALL(where_, clEnqueueWriteBuffer(queue_.get(), buffer.get(), CL_FALSE, 0, bytes, data, 0,
                                        nullptr, nullptr));
 }
 

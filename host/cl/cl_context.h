@@ -45,6 +45,7 @@ using QueueHandle = ClHandle<cl_command_queue, clReleaseCommandQueue>;
 using ProgramHandle = ClHandle<cl_program, clReleaseProgram>;
 using KernelHandle = ClHandle<cl_kernel, clReleaseKernel>;
 using MemHandle = ClHandle<cl_mem, clReleaseMemObject>;
+using EventHandle = ClHandle<cl_event, clReleaseEvent>;
 
 class DeviceContext;
 
@@ -101,12 +102,21 @@ class DeviceContext {
   // 1-D launch over global_size work-items (rounded up to a multiple of local_size when given;
   // 0 lets the driver choose). `label` names the launch in errors.
   void launch(const Kernel& kernel, size_t global_size, size_t local_size, const char* label);
+  // Same, returning the launch's event for profiling (empty when global_size is 0).
+  EventHandle launch_profiled(const Kernel& kernel, size_t global_size, size_t local_size,
+                              const char* label);
+  // Device time between a finished event's start and end, in seconds.
+  double event_seconds(const EventHandle& event) const;
 
   void write(const Buffer& buffer, const void* data, size_t bytes);
+  // Non-blocking write: `data` must stay valid until the next blocking call on this queue.
+  void write_async(const Buffer& buffer, const void* data, size_t bytes);
   void read(const Buffer& buffer, void* data, size_t bytes);
   void finish();
 
  private:
+  cl_event enqueue(const Kernel& kernel, size_t global_size, size_t local_size, const char* label,
+                   bool want_event);
   DeviceInfo device_;
   std::string where_;
   ContextHandle context_;

@@ -31,6 +31,10 @@ struct RenderOptions {
   bool quiet = false;
   bool progress = false;
   bool explain = false;
+  bool generic = false;
+  std::string form = "auto";
+  uint32_t paths_in_flight = 0;
+  size_t local_size = 0;
 };
 
 // Where the outputs go: -o, else SCENE_STEM.exr in the current directory. Checked before any work.
@@ -95,13 +99,19 @@ void write_outputs(const std::string& path, const Film& film, const Scene& scene
 
 void print_summary(const Scene& scene, const RenderReport& r) {
   const double seconds = std::max(1e-9, r.render_seconds);
-  std::printf("rendered %s: %dx%d, %llu spp, %d passes on %s\n", scene.file.c_str(),
+  std::printf("rendered %s: %dx%d, %llu spp, %d passes, %s on %s\n", scene.file.c_str(),
               scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
-              r.device.c_str());
+              execution_form_name(r.form), r.device.c_str());
   std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
               "kernel build %.2f s\n",
               r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
               r.paths ? double(r.segments) / double(r.paths) : 0.0, r.build_seconds);
+  if (!r.stage_times.empty()) {
+    std::printf("  device time per stage:");
+    for (const StageTime& t : r.stage_times)
+      std::printf(" %s %.3f s (%llu launches);", t.label.c_str(), t.seconds, (unsigned long long)t.launches);
+    std::printf(" %u paths in flight\n", r.paths_in_flight);
+  }
   if (r.dropped)
     std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
 }
@@ -110,12 +120,18 @@ int run(const RenderOptions& o) {
   const std::string out = output_path(o);
   Scene scene = load_scene_file(o.scene_path);
   apply_overrides(o, scene.settings);
-  if (o.explain) std::printf("%s", explain_kernel_options(features_for_scene(scene)).c_str());
+  if (o.explain)
+    std::printf("%s", explain_kernel_options(o.generic ? generic_features() : features_for_scene(scene)).c_str());
 
   RenderRequest request;
   request.device = o.device;
   request.time_limit_s = o.time_s.value_or(0.0);
   request.spp_given = o.spp.has_value() || !o.time_s.has_value();
+  request.generic_kernel = o.generic;
+  if (o.form != "auto")
+    request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
+  request.paths_in_flight = o.paths_in_flight;
+  request.local_size = o.local_size;
   request.show_progress = !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
   RenderReport report;
   request.scene = scene;
@@ -146,6 +162,13 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing but errors");
   cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
   cmd->add_flag("--explain", o->explain, "Print how the kernel was specialised for the scene");
+  cmd->add_flag("--generic", o->generic, "Compile every feature in, not only what the scene uses");
+  cmd->add_option("--form", o->form, "Execution form: auto (the device's default), megakernel or wavefront")
+      ->check(CLI::IsMember({"auto", "megakernel", "wavefront"}));
+  cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
+      ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
+  cmd->add_option("--local-size", o->local_size, "Work-group size (default: the driver's choice)")
+      ->check(CLI::Range(size_t(1), size_t(4096)));
   return [o] { return run(*o); };
 }
 

@@ -10,5 +10,9 @@ namespace clpt {
 // Adds the subcommand to `app`; the returned function runs it after parsing (returns exit code).
 std::function<int()> add_render_command(CLI::App& app);
 std::function<int()> add_devices_command(CLI::App& app);
+std::function<int()> add_bench_command(CLI::App& app);
+#ifdef CLPT_WITH_OIIO
+std::function<int()> add_compare_command(CLI::App& app);
+#endif
 
 }  // namespace clpt

@@ -13,6 +13,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   const auto run_render = clpt::add_render_command(app);
   const auto run_devices = clpt::add_devices_command(app);
+  const auto run_bench = clpt::add_bench_command(app);
+#ifdef CLPT_WITH_OIIO
+  const auto run_compare = clpt::add_compare_command(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -24,6 +28,10 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return run_render();
     if (app.got_subcommand("devices")) return run_devices();
+    if (app.got_subcommand("bench")) return run_bench();
+#ifdef CLPT_WITH_OIIO
+    if (app.got_subcommand("compare")) return run_compare();
+#endif
     return static_cast<int>(clpt::ExitCode::Usage);
   } catch (const clpt::Error& e) {
     std::fprintf(stderr, "clpt: error: %s\n", e.what());

@@ -8,6 +8,7 @@ KernelFeatures features_for_scene(const Scene& scene) {
   KernelFeatures f;
   f.phong = false;
   f.glass = false;
+  f.sphere_count = static_cast<int>(scene.spheres.size());
   for (const Sphere& s : scene.spheres) {
     f.phong |= s.material.type == MaterialType::Phong;
     f.glass |= s.material.type == MaterialType::Glass;
@@ -23,6 +24,8 @@ std::string kernel_build_options(const KernelFeatures& features) {
   o << "-cl-std=CL1.2";
   o << " -DCLPT_HAS_PHONG=" << (features.phong ? 1 : 0);
   o << " -DCLPT_HAS_GLASS=" << (features.glass ? 1 : 0);
+  if (features.sphere_count > 0) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
+  if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
 
@@ -35,6 +38,10 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << "\n";
   o << "  glass shading: " << (features.glass ? "compiled (the scene has a glass material)"
                                               : "left out (no glass material in the scene)")
+    << "\n";
+  o << "  sphere loop: "
+    << (features.sphere_count > 0 ? "unrolled for the scene's " + std::to_string(features.sphere_count) + " spheres"
+                                  : std::string("run-time sphere count (generic kernel)"))
     << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();

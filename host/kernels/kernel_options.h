@@ -2,6 +2,7 @@
 // compiled in and the exact build options. `clpt render --explain` prints its answer.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include "scene/scene.h"
@@ -9,8 +10,11 @@
 namespace clpt {
 
 struct KernelFeatures {
-  bool phong = true;  // CLPT_HAS_PHONG
-  bool glass = true;  // CLPT_HAS_GLASS
+  bool phong = true;     // CLPT_HAS_PHONG
+  bool glass = true;     // CLPT_HAS_GLASS
+  int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (loop unrolled); 0: read at run time
+  // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
+  uint64_t build_nonce = 0;
 };
 
 // Only what the scene uses. (Lambertian and emitters are always present.)

@@ -8,7 +8,8 @@ namespace clpt {
 
 MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene,
                                        const KernelFeatures& features, size_t local_size)
-    : ctx_(ctx), build_options_(kernel_build_options(features)), local_size_(local_size) {
+    : ctx_(ctx), local_size_(local_size) {
+  build_options_ = kernel_build_options(features);
   const auto start = std::chrono::steady_clock::now();
   program_ = ctx.build_program(assemble_kernel_source("megakernel.cl"), build_options_, "megakernel.cl");
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -6,11 +6,12 @@
 
 #include "cl/cl_context.h"
 #include "kernels/kernel_options.h"
+#include "render/renderer.h"
 #include "scene/device_scene.h"
 
 namespace clpt {
 
-class MegakernelRenderer {
+class MegakernelRenderer : public Renderer {
  public:
   // Builds the program for `features` and uploads the scene. local_size 0 lets the driver choose.
   MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene, const KernelFeatures& features,
@@ -18,15 +19,13 @@ class MegakernelRenderer {
 
   // Traces params.samples_per_pass samples, starting at params.sample_begin, for the pixels
   // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
-  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params);
+  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
 
-  double build_seconds() const { return build_seconds_; }
-  const std::string& build_options() const { return build_options_; }
+  // The pass buffer holds only per-pixel sums: any sample count fits.
+  uint32_t max_samples_per_pass(uint32_t) const override { return UINT32_MAX; }
 
  private:
   DeviceContext& ctx_;
-  std::string build_options_;
-  double build_seconds_ = 0;
   ProgramHandle program_;
   Kernel kernel_;
   Buffer spheres_;

@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "cl/cl_context.h"
 #include "cl/cl_device.h"
 #include "kernels/kernel_options.h"
 #include "render/megakernel_renderer.h"
 #include "render/progress.h"
+#include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
 
 namespace clpt {
@@ -17,6 +19,8 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+}  // namespace
 
 GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   const RenderSettings& s = scene.settings;
@@ -35,7 +39,22 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   return p;
 }
 
-}  // namespace
+std::unique_ptr<Renderer> make_renderer(ExecutionForm form, DeviceContext& ctx,
+                                        const DeviceScene& scene, const KernelFeatures& features,
+                                        uint32_t paths_in_flight, size_t local_size) {
+  if (form == ExecutionForm::Wavefront)
+    return std::make_unique<WavefrontRenderer>(ctx, scene, features, paths_in_flight, local_size);
+  return std::make_unique<MegakernelRenderer>(ctx, scene, features, local_size);
+}
+
+const char* execution_form_name(ExecutionForm form) {
+  return form == ExecutionForm::Wavefront ? "wavefront" : "megakernel";
+}
+
+ExecutionForm default_form_for(const DeviceInfo& device) {
+  (void)device;
+  return ExecutionForm::Megakernel;
+}
 
 uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
                            double target_s, uint32_t granularity) {
@@ -58,9 +77,13 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   // 2. The scene as the kernels see it, and a kernel specialised for it.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
   const KernelFeatures features = request.generic_kernel ? generic_features() : features_for_scene(scene);
-  MegakernelRenderer renderer(ctx, device_scene, features, request.local_size);
-  report.build_options = renderer.build_options();
-  report.build_seconds = renderer.build_seconds();
+  report.form = request.form.value_or(default_form_for(ctx.device()));
+  const std::unique_ptr<Renderer> renderer = make_renderer(
+      report.form, ctx, device_scene, features, request.paths_in_flight, request.local_size);
+  report.build_options = renderer->build_options();
+  report.build_seconds = renderer->build_seconds();
+  if (auto* wavefront = dynamic_cast<WavefrontRenderer*>(renderer.get()))
+    report.paths_in_flight = wavefront->paths_in_flight();
 
   // 3. Passes until the sample count or the time budget is reached.
   Film film(settings.width, settings.height);
@@ -77,9 +100,11 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
     double pass_s = pass_target_s;
     if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - elapsed));
     params.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
-    params.samples_per_pass = next_pass_samples(film.samples_per_pixel(), target, rate, pass_s, granularity);
+    params.samples_per_pass = std::min(
+        next_pass_samples(film.samples_per_pixel(), target, rate, pass_s, granularity),
+        std::max(granularity, renderer->max_samples_per_pass(params.pixel_count) / granularity * granularity));
     const auto pass_start = std::chrono::steady_clock::now();
-    film.add_pass(renderer.render_pass(params), 0, params.samples_per_pass);
+    film.add_pass(renderer->render_pass(params), 0, params.samples_per_pass);
     rate = params.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
     ++report.passes;
     progress.update(report.passes, film.samples_per_pixel(), target,
@@ -92,6 +117,7 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   report.paths = film.total_samples();
   report.segments = film.total_segments();
   report.dropped = film.dropped_samples();
+  report.stage_times = renderer->stage_times();
   return film;
 }
 

@@ -2,9 +2,12 @@
 // kernel, run passes until the sample count or time budget is reached, accumulate in double.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "render/film.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -17,6 +20,8 @@ struct RenderRequest {
   bool show_progress = false;
   bool generic_kernel = false;  // compile every feature, not only what the scene needs
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
+  std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
+  uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
 };
 
 struct RenderReport {
@@ -29,7 +34,26 @@ struct RenderReport {
   uint64_t paths = 0;
   uint64_t segments = 0;
   uint64_t dropped = 0;        // samples with NaN/Inf radiance, excluded from the film
+  ExecutionForm form = ExecutionForm::Megakernel;
+  uint32_t paths_in_flight = 0;  // wavefront only
+  std::vector<StageTime> stage_times;
 };
+
+struct DeviceInfo;
+class DeviceContext;
+struct DeviceScene;
+struct KernelFeatures;
+
+// Kernel parameters of a whole-image pass for this scene (sample_begin/samples_per_pass unset).
+GpuRenderParams make_params(const Scene& scene, const DeviceScene& device_scene);
+
+// The renderer of an execution form, with its program built for `features`.
+std::unique_ptr<Renderer> make_renderer(ExecutionForm form, DeviceContext& ctx,
+                                        const DeviceScene& scene, const KernelFeatures& features,
+                                        uint32_t paths_in_flight, size_t local_size);
+
+// The execution form used when none is asked for on this device (README: "Execution forms").
+ExecutionForm default_form_for(const DeviceInfo& device);
 
 // Blocking. Throws clpt::Error on device or build failure.
 Film run_render(const RenderRequest& request, RenderReport& report);

@@ -1,0 +1,79 @@
+// `clpt bench`: the benchmark matrix (tools/bench.h), as a table and optionally JSON, with an
+// optional comparison against a saved JSON baseline.
+#include <cstdio>
+#include <memory>
+
+#include "cli/commands.h"
+#include "render/film_raw.h"
+#include "tools/bench.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+struct BenchOptions {
+  std::vector<std::string> scenes = {"scenes/diffuse.toml"};
+  std::vector<std::string> forms = {"megakernel", "wavefront"};
+  std::vector<std::string> kernels = {"specialised"};
+  std::string json, baseline;
+  double tolerance = 10;
+};
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = temporary_path_for(path);
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw Error(ExitCode::OutputError, "--json " + path + ": cannot write file");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) {
+    std::remove(tmp.c_str());
+    throw Error(ExitCode::OutputError, "--json " + path + ": cannot write file");
+  }
+  commit_temporary(tmp, path);
+}
+
+int run(BenchConfig config, const BenchOptions& o) {
+  for (const std::string& f : o.forms)
+    config.forms.push_back(f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel);
+  config.generic.clear();
+  for (const std::string& k : o.kernels) config.generic.push_back(k == "generic");
+  config.scenes = o.scenes;
+  if (config.devices.empty()) config.devices = {"best"};
+  const std::vector<BenchRow> rows = run_bench(config, true);
+  std::printf("%s", bench_table(rows).c_str());
+  if (!o.json.empty()) write_text_atomic(o.json, bench_json(rows, config));
+  if (o.baseline.empty()) return 0;
+  const std::vector<std::string> regressions = bench_regressions(rows, o.baseline, o.tolerance);
+  for (const std::string& r : regressions) std::printf("REGRESSION %s\n", r.c_str());
+  if (regressions.empty()) std::printf("no figure fell more than %.1f%% below %s\n", o.tolerance, o.baseline.c_str());
+  return regressions.empty() ? 0 : static_cast<int>(ExitCode::Failure);
+}
+
+}  // namespace
+
+std::function<int()> add_bench_command(CLI::App& app) {
+  auto config = std::make_shared<BenchConfig>();
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Benchmark scene x form x kernel x device x work-group size");
+  cmd->add_option("--scenes", o->scenes, "Scene files (default: scenes/diffuse.toml)")->delimiter(',');
+  cmd->add_option("--forms", o->forms, "megakernel,wavefront")
+      ->delimiter(',')->check(CLI::IsMember({"megakernel", "wavefront"}));
+  cmd->add_option("--kernels", o->kernels, "specialised,generic")
+      ->delimiter(',')->check(CLI::IsMember({"specialised", "generic"}));
+  cmd->add_option("--devices", config->devices, "Device specs as for render --device, or all (default: best)")
+      ->delimiter(',');
+  cmd->add_option("--local-sizes", config->local_sizes, "Work-group sizes, 0 = the form's default")
+      ->delimiter(',')->check(CLI::Range(size_t(0), size_t(4096)));
+  cmd->add_option("--width", config->width, "Image width")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", config->height, "Image height")->check(CLI::Range(1, 16384));
+  cmd->add_option("--spp", config->spp, "Samples per pixel of one timed run")->check(CLI::Range(1u, 65536u));
+  cmd->add_option("--warmup", config->warmup, "Untimed runs first")->check(CLI::Range(0, 100));
+  cmd->add_option("--repeat", config->repeat, "Timed runs")->check(CLI::Range(1, 1000));
+  cmd->add_option("--paths-in-flight", config->paths_in_flight, "Wavefront path slots (0: the device's default)");
+  cmd->add_option("--json", o->json, "Also write the results as JSON");
+  cmd->add_option("--baseline", o->baseline, "Compare with a saved --json file; exit 1 on a regression");
+  cmd->add_option("--tolerance", o->tolerance, "Allowed drop of median paths/s against --baseline, percent")
+      ->check(CLI::Range(0.0, 100.0));
+  return [config, o] { return run(*config, *o); };
+}
+
+}  // namespace clpt

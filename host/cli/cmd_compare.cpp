@@ -1,0 +1,169 @@
+// `clpt compare A B`: are two renders estimates of the same image? Reads the mean and variance
+// channels, runs the tests of tools/image_compare.h, prints the report and optionally writes it
+// as JSON and a false-colour difference PNG. Exit 0 on PASS, 1 on FAIL, 2 on unusable input.
+#include <OpenImageIO/imageio.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "io/image_io.h"
+#include "render/film_raw.h"
+#include "tools/image_compare.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+struct CompareCommandOptions {
+  std::string path_a, path_b;
+  std::string json_path;
+  std::string diff_png_path;
+  CompareOptions test;
+};
+
+// The channels named `names` of `img`, 3 floats a pixel. A missing channel is a usage error that
+// names the file and the channel.
+std::vector<float> take_rgb(const LoadedImage& img, const std::string& path, const std::string (&names)[3]) {
+  int index[3];
+  for (int c = 0; c < 3; ++c) {
+    index[c] = img.channel(names[c]);
+    if (index[c] < 0)
+      throw Error(ExitCode::Usage, path + ": no channel '" + names[c] + "'; compare needs the mean (R, G, B) "
+                                   "and its variance (variance.R, variance.G, variance.B) as `clpt render` "
+                                   "writes them");
+  }
+  const size_t pixels = size_t(img.width) * img.height, stride = img.channels.size();
+  std::vector<float> rgb(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = img.pixels[p * stride + index[c]];
+  return rgb;
+}
+
+std::optional<uint64_t> spp_from_metadata(const ImageMetadata& metadata) {
+  const auto it = metadata.find("clpt:spp");
+  if (it == metadata.end()) return std::nullopt;
+  try {
+    return uint64_t(std::stoull(it->second));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// A clpt EXR (mean and variance channels), or a raw NAME.pfm film with its NAME.var.pfm beside it.
+MeanVarianceImage load_render(const std::string& path, ComparedFile& info) {
+  static const std::string kMean[3] = {"R", "G", "B"};
+  static const std::string kVariance[3] = {"variance.R", "variance.G", "variance.B"};
+  const LoadedImage img = read_image(path);
+  MeanVarianceImage out;
+  out.width = img.width;
+  out.height = img.height;
+  out.mean = take_rgb(img, path, kMean);
+  info.path = path;
+  info.spp = spp_from_metadata(img.metadata);
+  if (std::filesystem::path(path).extension() != ".pfm") {
+    out.variance = take_rgb(img, path, kVariance);
+    return out;
+  }
+  const std::string variance_path = std::filesystem::path(path).replace_extension(".var.pfm").string();
+  if (!std::filesystem::exists(variance_path))
+    throw Error(ExitCode::Usage, path + ": no variance file " + variance_path + " beside this raw film");
+  const LoadedImage variance = read_image(variance_path);
+  if (variance.width != img.width || variance.height != img.height)
+    throw Error(ExitCode::Usage, variance_path + ": its size differs from " + path);
+  out.variance = take_rgb(variance, variance_path, kMean);
+  return out;
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = temporary_path_for(path);
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + std::strerror(errno));
+    out << text;
+    if (!out.flush()) {
+      std::remove(tmp.c_str());
+      throw Error(ExitCode::OutputError, path + ": cannot write output: write failed");
+    }
+  }
+  commit_temporary(tmp, path);
+}
+
+void write_rgb8_atomically(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
+  const std::string tmp = temporary_path_for(path);
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + OIIO::geterror());
+  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
+    const std::string reason = out->geterror();
+    std::remove(tmp.c_str());
+    throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
+  }
+  commit_temporary(tmp, path);
+}
+
+// Output paths are checked before any work, so a typo costs nothing.
+void check_output_path(const std::string& option, const std::string& path, const char* extension) {
+  if (path.empty()) return;
+  if (std::filesystem::path(path).extension() != extension)
+    throw Error(ExitCode::Usage, option + " " + path + ": the file must end in " + extension);
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw Error(ExitCode::Usage, option + " " + path + ": directory '" + dir.string() + "' does not exist");
+}
+
+int run(const CompareCommandOptions& o) {
+  check_output_path("--json", o.json_path, ".json");
+  check_output_path("--diff-png", o.diff_png_path, ".png");
+  ComparedFile info_a, info_b;
+  const MeanVarianceImage a = load_render(o.path_a, info_a);
+  const MeanVarianceImage b = load_render(o.path_b, info_b);
+  if (a.width != b.width || a.height != b.height)
+    throw Error(ExitCode::Usage, o.path_a + " is " + std::to_string(a.width) + "x" + std::to_string(a.height) +
+                                     " but " + o.path_b + " is " + std::to_string(b.width) + "x" +
+                                     std::to_string(b.height) + ": compare needs images of the same size");
+  const CompareResult result = compare_renders(a, b, o.test);
+  if (!o.json_path.empty()) write_text_atomically(o.json_path, compare_report_json(result, info_a, info_b));
+  if (!o.diff_png_path.empty())
+    write_rgb8_atomically(o.diff_png_path, a.width, a.height, z_to_colour_ramp(pixel_average_z(a, b)));
+  std::fputs(format_compare_report(result, info_a, info_b).c_str(), stdout);
+  return static_cast<int>(result.pass ? ExitCode::Ok : ExitCode::Failure);
+}
+
+}  // namespace
+
+std::function<int()> add_compare_command(CLI::App& app) {
+  auto o = std::make_shared<CompareCommandOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Test whether two renders (EXRs with variance channels) estimate the same image");
+  cmd->add_option("a", o->path_a, "First render (EXR from `clpt render`, or a raw .pfm with its .var.pfm)")->required();
+  cmd->add_option("b", o->path_b, "Second render, the same size")->required();
+  cmd->add_option("--json", o->json_path, "Also write the report's figures to this .json file");
+  cmd->add_option("--diff-png", o->diff_png_path,
+                  "Write a false-colour z map: blue (A darker) - white - red (A brighter), saturating at |z| = 4");
+  cmd->add_flag("--same-seed", o->test.same_seed,
+                "Renders of the same seed: pass when nearly all pixels are equal (see --tolerance, --min-equal)");
+  cmd->add_option("--tolerance", o->test.tolerance, "Same-seed relative tolerance per channel")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-equal", o->test.min_equal, "Same-seed: fraction of equal pixels needed")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--min-accept", o->test.min_accept, "Fraction of accepting pixels needed")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--pixel-alpha", o->test.pixel_alpha,
+                  "False-rejection rate of one pixel's test (over its 3 channels)")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-12, 0.5));
+  cmd->add_option("--alpha", o->test.alpha, "Family-wise level of each block scale and of the image mean")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-12, 0.5));
+  return [o] { return run(*o); };
+}
+
+}  // namespace clpt

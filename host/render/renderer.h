@@ -1,0 +1,44 @@
+// What a pass needs from an execution form. MegakernelRenderer and WavefrontRenderer implement
+// it from the same stage functions (kernels/path.cl); RenderSession drives either.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "kernels/types.h"
+
+namespace clpt {
+
+enum class ExecutionForm { Megakernel, Wavefront };
+const char* execution_form_name(ExecutionForm form);
+
+// Time spent in one labelled kernel, from OpenCL profiling events (seconds, summed).
+struct StageTime {
+  std::string label;
+  double seconds = 0;
+  uint64_t launches = 0;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+
+  // Traces params.samples_per_pass samples from params.sample_begin for the pixels
+  // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
+  virtual std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) = 0;
+
+  // Largest samples_per_pass this renderer accepts for `pixel_count` pixels (memory bound).
+  virtual uint32_t max_samples_per_pass(uint32_t pixel_count) const = 0;
+
+  // Per-kernel device time so far (empty when not measured).
+  virtual std::vector<StageTime> stage_times() const { return {}; }
+
+  double build_seconds() const { return build_seconds_; }
+  const std::string& build_options() const { return build_options_; }
+
+ protected:
+  double build_seconds_ = 0;
+  std::string build_options_;
+};
+
+}  // namespace clpt

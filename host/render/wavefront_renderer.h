@@ -1,0 +1,55 @@
+// The split wavefront execution form (kernels/wavefront.cl): a pool of path slots in
+// structure-of-arrays buffers, one kernel per stage over compacted queues, finished slots refilled
+// with the pass's next samples until every sample of the pass is done.
+#pragma once
+
+#include <map>
+#include <vector>
+
+#include "cl/cl_context.h"
+#include "kernels/kernel_options.h"
+#include "render/renderer.h"
+#include "scene/device_scene.h"
+
+namespace clpt {
+
+class WavefrontRenderer : public Renderer {
+ public:
+  // paths_in_flight 0: chosen from the device (default_paths_in_flight).
+  WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scene, const KernelFeatures& features,
+                    uint32_t paths_in_flight = 0, size_t local_size = 0);
+
+  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
+  // One result slot (16 bytes) per sample of the pass: bounded to kMaxJobBytes.
+  uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
+  std::vector<StageTime> stage_times() const override;
+
+  uint32_t paths_in_flight() const { return paths_; }
+
+  // 16384 paths per compute unit, within [65536, 4M]: enough to fill a GPU's lanes many times
+  // over and to give PoCL long vectorisable queues, at about 110 bytes per path.
+  static uint32_t default_paths_in_flight(const DeviceInfo& device);
+  static constexpr size_t kMaxJobBytes = size_t(256) << 20;
+  static constexpr size_t kDefaultLocalSize = 64;
+
+ private:
+  void bind_state(Kernel& kernel, cl_uint first_index);
+  // Keeps a launch's event until collect_times(), after the next blocking call, adds it up.
+  void record(const char* label, EventHandle event);
+  void collect_times();
+  void generate(const GpuRenderParams& params, uint32_t job_begin, uint32_t count,
+                uint32_t free_begin, uint32_t active_begin);
+
+  DeviceContext& ctx_;
+  uint32_t paths_;
+  size_t local_size_;
+  ProgramHandle program_;
+  Kernel generate_, intersect_, shade_, compact_, film_;
+  Buffer spheres_;
+  std::vector<Buffer> state_;  // one per CLPT_PATH_STATE_FIELDS entry
+  Buffer active_, next_active_, free_, counters_, results_, pass_;
+  std::map<std::string, StageTime> times_;
+  std::vector<std::pair<const char*, EventHandle>> pending_;
+};
+
+}  // namespace clpt

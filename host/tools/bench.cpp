@@ -1,0 +1,211 @@
+#include "tools/bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "cl/cl_context.h"
+#include "cl/cl_device.h"
+#include "kernels/kernel_options.h"
+#include "render/film.h"
+#include "render/render_session.h"
+#include "render/wavefront_renderer.h"
+#include "scene/device_scene.h"
+#include "scene/scene_loader.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+Spread spread_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  Spread s;
+  s.min = v.front();
+  s.max = v.back();
+  s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+  return s;
+}
+
+std::vector<const DeviceInfo*> resolve_devices(const std::vector<std::string>& specs,
+                                               const std::vector<DeviceInfo>& all) {
+  std::vector<const DeviceInfo*> out;
+  for (const std::string& spec : specs) {
+    if (spec == "all") {
+      for (const DeviceInfo& d : all) out.push_back(&d);
+    } else {
+      out.push_back(&select_device(all, spec));
+    }
+  }
+  return out;
+}
+
+// One matrix cell: builds (cold, then cached), warms up, times `repeat` runs.
+BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx, ExecutionForm form,
+                    bool generic, size_t local_size) {
+  BenchRow row;
+  row.scene = scene.file;
+  row.form = execution_form_name(form);
+  row.kernel = generic ? "generic" : "specialised";
+  row.device = ctx.device().name;
+  row.local_size = local_size;
+  const DeviceScene ds = make_device_scene(scene, c.width, c.height);
+  KernelFeatures features = generic ? generic_features() : features_for_scene(scene);
+
+  // Cold: options no driver cache has seen. Cached: the same build twice, the second timed.
+  features.build_nonce = std::random_device{}() | 1u;
+  row.build_cold_s = make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size)->build_seconds();
+  features.build_nonce = 0;
+  make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
+  const auto renderer = make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
+  row.build_cached_s = renderer->build_seconds();
+
+  GpuRenderParams params = make_params(scene, ds);
+  params.samples_per_pass = std::min(c.spp, renderer->max_samples_per_pass(params.pixel_count));
+  std::vector<double> paths_per_s, segments_per_s;
+  std::map<std::string, std::vector<double>> stage_runs;
+  std::map<std::string, double> stage_before;
+  for (int run = 0; run < c.warmup + c.repeat; ++run) {
+    Film film(c.width, c.height);
+    params.sample_begin = static_cast<cl_uint>(run) * params.samples_per_pass;
+    const auto t0 = std::chrono::steady_clock::now();
+    film.add_pass(renderer->render_pass(params), 0, params.samples_per_pass);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (const StageTime& t : renderer->stage_times()) {
+      if (run >= c.warmup) stage_runs[t.label].push_back(t.seconds - stage_before[t.label]);
+      stage_before[t.label] = t.seconds;
+    }
+    if (run < c.warmup) continue;
+    paths_per_s.push_back(double(film.total_samples()) / s);
+    segments_per_s.push_back(double(film.total_segments()) / s);
+  }
+  row.paths_per_s = spread_of(paths_per_s);
+  row.segments_per_s = spread_of(segments_per_s);
+  for (const auto& [label, v] : stage_runs) row.stage_seconds.emplace_back(label, spread_of(v).median);
+  if (form == ExecutionForm::Wavefront)
+    row.paths_in_flight = c.paths_in_flight ? c.paths_in_flight : WavefrontRenderer::default_paths_in_flight(ctx.device());
+  return row;
+}
+
+std::string format_rate(const Spread& s) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f [%.2f-%.2f]", s.median * 1e-6, s.min * 1e-6, s.max * 1e-6);
+  return buf;
+}
+
+}  // namespace
+
+std::string BenchRow::key() const {
+  return scene + "|" + form + "|" + kernel + "|" + device + "|" + std::to_string(local_size);
+}
+
+std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
+  const std::vector<DeviceInfo> all = list_devices();
+  std::vector<BenchRow> rows;
+  for (const DeviceInfo* device : resolve_devices(c.devices, all)) {
+    DeviceContext ctx(*device);
+    for (const std::string& file : c.scenes) {
+      Scene scene = load_scene_file(file);
+      scene.settings.width = c.width;
+      scene.settings.height = c.height;
+      scene.settings.sampler = Sampler::Jitter;
+      for (ExecutionForm form : c.forms)
+        for (bool generic : c.generic)
+          for (size_t local_size : c.local_sizes) {
+            if (show_progress)
+              std::fprintf(stderr, "bench: %s, %s, %s kernel, local size %zu, %s\n", file.c_str(),
+                           execution_form_name(form), generic ? "generic" : "specialised",
+                           local_size, device->name.c_str());
+            rows.push_back(bench_cell(c, scene, ctx, form, generic, local_size));
+          }
+    }
+  }
+  return rows;
+}
+
+std::string bench_table(const std::vector<BenchRow>& rows) {
+  std::ostringstream o;
+  char line[512];
+  std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
+                "kernel", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
+                "build cold/cached s", "device");
+  o << line;
+  for (const BenchRow& r : rows) {
+    char build[32];
+    std::snprintf(build, sizeof build, "%.2f/%.2f", r.build_cold_s, r.build_cached_s);
+    std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
+                  r.form.c_str(), r.kernel.c_str(),
+                  r.local_size ? std::to_string(r.local_size).c_str() : "auto",
+                  format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), build,
+                  r.device.c_str());
+    o << line;
+    if (!r.stage_seconds.empty()) {
+      o << "    stages (median s/run):";
+      for (const auto& [label, s] : r.stage_seconds) {
+        std::snprintf(line, sizeof line, " %s %.4f", label.c_str(), s);
+        o << line;
+      }
+      o << "; " << r.paths_in_flight << " paths in flight\n";
+    }
+  }
+  return o.str();
+}
+
+std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) {
+  nlohmann::json j;
+  j["clpt_version"] = CLPT_VERSION;
+  j["config"] = {{"width", c.width}, {"height", c.height}, {"spp", c.spp},
+                 {"warmup", c.warmup}, {"repeat", c.repeat}};
+  j["rows"] = nlohmann::json::array();
+  for (const BenchRow& r : rows) {
+    nlohmann::json stages = nlohmann::json::object();
+    for (const auto& [label, s] : r.stage_seconds) stages[label] = s;
+    auto spread = [](const Spread& s) {
+      return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max}};
+    };
+    j["rows"].push_back({{"key", r.key()}, {"scene", r.scene}, {"form", r.form},
+                         {"kernel", r.kernel}, {"device", r.device}, {"local_size", r.local_size},
+                         {"paths_in_flight", r.paths_in_flight},
+                         {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
+                         {"paths_per_s", spread(r.paths_per_s)},
+                         {"segments_per_s", spread(r.segments_per_s)},
+                         {"stage_seconds", stages}});
+  }
+  return j.dump(2) + "\n";
+}
+
+std::vector<std::string> bench_regressions(const std::vector<BenchRow>& rows,
+                                           const std::string& baseline_path,
+                                           double tolerance_percent) {
+  std::ifstream in(baseline_path);
+  if (!in) throw Error(ExitCode::Usage, "--baseline " + baseline_path + ": cannot open file");
+  nlohmann::json base;
+  try {
+    base = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(ExitCode::Usage, "--baseline " + baseline_path + ": not a bench JSON file: " + e.what());
+  }
+  std::map<std::string, double> baseline;
+  for (const auto& row : base.value("rows", nlohmann::json::array()))
+    baseline[row.value("key", "")] = row["paths_per_s"].value("median", 0.0);
+  std::vector<std::string> out;
+  for (const BenchRow& r : rows) {
+    const auto it = baseline.find(r.key());
+    if (it == baseline.end() || it->second <= 0) continue;
+    const double change = 100.0 * (r.paths_per_s.median / it->second - 1.0);
+    if (change < -tolerance_percent) {
+      char line[512];
+      std::snprintf(line, sizeof line, "%s: %.3f M paths/s, baseline %.3f (%.1f%%, limit -%.1f%%)",
+                    r.key().c_str(), r.paths_per_s.median * 1e-6, it->second * 1e-6, change,
+                    tolerance_percent);
+      out.push_back(line);
+    }
+  }
+  return out;
+}
+
+}  // namespace clpt

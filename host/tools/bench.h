@@ -1,0 +1,51 @@
+// `clpt bench`: a matrix of scene x execution form x kernel (specialised or generic) x device x
+// work-group size, each with cold and cached kernel build times, warm-up and repeated timed
+// passes (median and spread of paths/s and ray segments/s), and per-stage device time of the
+// wavefront from OpenCL profiling events. The same renderers as `clpt render`, nothing else.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace clpt {
+
+struct BenchConfig {
+  std::vector<std::string> scenes;             // scene files
+  std::vector<ExecutionForm> forms;
+  std::vector<std::string> devices;            // --device values; "all" expands to every device
+  std::vector<size_t> local_sizes = {0};       // 0: the form's default
+  std::vector<bool> generic = {false};         // false: specialised kernel, true: generic
+  int width = 320, height = 240;
+  uint32_t spp = 16;                           // samples per pixel of one timed run
+  int warmup = 1, repeat = 5;
+  uint32_t paths_in_flight = 0;                // wavefront; 0: the device's default
+};
+
+struct Spread {
+  double median = 0, min = 0, max = 0;
+};
+
+struct BenchRow {
+  std::string scene, form, kernel, device;
+  size_t local_size = 0;
+  uint32_t paths_in_flight = 0;
+  double build_cold_s = 0, build_cached_s = 0;
+  Spread paths_per_s, segments_per_s;
+  std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
+  std::string key() const;  // identifies the row across runs (for --baseline)
+};
+
+std::vector<BenchRow> run_bench(const BenchConfig& config, bool show_progress);
+
+std::string bench_table(const std::vector<BenchRow>& rows);
+std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& config);
+
+// Rows of `baseline_json` (a file written by --json) whose median paths/s the new rows fall below
+// by more than tolerance_percent; one line each. Throws Error(Usage) for an unreadable file.
+std::vector<std::string> bench_regressions(const std::vector<BenchRow>& rows,
+                                           const std::string& baseline_path,
+                                           double tolerance_percent);
+
+}  // namespace clpt
