@@ -15,35 +15,32 @@
 #include "maths.cl"
 
 /* Cosine-weighted direction around unit n; pdf cos(theta) / pi. */
-CLPT_INLINE float3 sample_cosine_hemisphere(float3 n, float2 u) {
-  const float2 circle = unit_circle(u.x);
-  const float radius = sqrt(u.y);
-  const float3 local_dir = (float3)(radius * circle.x, radius * circle.y, sqrt(fmax(0.0f, 1.0f - u.y)));
-  return to_world(local_dir, n);
+CLPT_INLINE Vec3 sample_cosine_hemisphere(Vec3 n, float u0, float u1) {
+  const Float2 circle = unit_circle(u0);
+  const float radius = sqrt(u1);
+  return to_world(v3(radius * circle.x, radius * circle.y, sqrt(fmax(0.0f, 1.0f - u1))), n);
 }
 
 /* Direction around unit axis with pdf (exponent+1)/(2 pi) cos^exponent(alpha). */
-CLPT_INLINE float3 sample_phong_lobe(float3 axis, float exponent, float2 u) {
-  const float2 circle = unit_circle(u.x);
-  const float cos_alpha = pow(u.y, 1.0f / (exponent + 1.0f));
+CLPT_INLINE Vec3 sample_phong_lobe(Vec3 axis, float exponent, float u0, float u1) {
+  const Float2 circle = unit_circle(u0);
+  const float cos_alpha = pow_unit(u1, 1.0f / (exponent + 1.0f));
   const float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
-  return to_world((float3)(sin_alpha * circle.x, sin_alpha * circle.y, cos_alpha), axis);
+  return to_world(v3(sin_alpha * circle.x, sin_alpha * circle.y, cos_alpha), axis);
 }
 
-CLPT_INLINE float3 reflect_about(float3 d, float3 n) { return d - 2.0f * dot(n, d) * n; }
+CLPT_INLINE Vec3 reflect_about(Vec3 d, Vec3 n) { return v3_add_scaled(d, n, -2.0f * v3_dot(n, d)); }
 
-CLPT_INLINE float3 bsdf_lambertian_sample(float3 d, float3 n, float3 rho, float4 u, float3* weight) {
-  const float3 facing = dot(n, d) < 0.0f ? n : -n;
+CLPT_INLINE Vec3 bsdf_lambertian_sample(Vec3 d, Vec3 n, Vec3 rho, Uniform4 u, Vec3* weight) {
+  const Vec3 facing = v3_select(v3_dot(n, d) < 0.0f, n, v3_neg(n));
   *weight = rho;
-  return sample_cosine_hemisphere(facing, u.xy);
+  return sample_cosine_hemisphere(facing, u.u0, u.u1);
 }
 
-CLPT_INLINE float3 bsdf_phong_sample(float3 d, float3 n, float3 rho, float exponent, float4 u,
-                                float3* weight) {
-  const float3 mirror = reflect_about(d, n);
-  const float3 out = sample_phong_lobe(mirror, exponent, u.xy);
-  const float cos_out = dot(n, out);
-  *weight = cos_out > 0.0f ? rho * ((exponent + 2.0f) / (exponent + 1.0f) * cos_out) : (float3)(0.0f);
+CLPT_INLINE Vec3 bsdf_phong_sample(Vec3 d, Vec3 n, Vec3 rho, float exponent, Uniform4 u, Vec3* weight) {
+  const Vec3 out = sample_phong_lobe(reflect_about(d, n), exponent, u.u0, u.u1);
+  const float cos_out = v3_dot(n, out);
+  *weight = v3_scale(rho, cos_out > 0.0f ? (exponent + 2.0f) / (exponent + 1.0f) * cos_out : 0.0f);
   return out;
 }
 
@@ -55,20 +52,18 @@ CLPT_INLINE float fresnel_dielectric(float eta, float cos_i, float cos_t) {
   return 0.5f * (r_s * r_s + r_p * r_p);
 }
 
-CLPT_INLINE float3 bsdf_glass_sample(float3 d, float3 n, float3 rho, float ior, float4 u,
-                                float3* weight) {
-  const bool entering = dot(n, d) < 0.0f;
-  const float3 facing = entering ? n : -n;
+CLPT_INLINE Vec3 bsdf_glass_sample(Vec3 d, Vec3 n, Vec3 rho, float ior, Uniform4 u, Vec3* weight) {
+  const bool entering = v3_dot(n, d) < 0.0f;
+  const Vec3 facing = v3_select(entering, n, v3_neg(n));
   const float eta = entering ? 1.0f / ior : ior; /* n_from / n_to */
-  const float cos_i = -dot(d, facing);
+  const float cos_i = -v3_dot(d, facing);
   const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-  const float3 mirror = reflect_about(d, facing);
-  *weight = rho;
-  if (sin2_t >= 1.0f) return mirror; /* total internal reflection */
-  const float cos_t = sqrt(1.0f - sin2_t);
-  if (u.z < fresnel_dielectric(eta, cos_i, cos_t)) return mirror;
-  *weight = rho * (eta * eta);
-  return normalize(eta * d + (eta * cos_i - cos_t) * facing);
+  const float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+  /* Total internal reflection, or reflection with probability Fr. */
+  const bool reflect = sin2_t >= 1.0f || u.u2 < fresnel_dielectric(eta, cos_i, cos_t);
+  *weight = v3_scale(rho, reflect ? 1.0f : eta * eta);
+  const Vec3 refracted = v3_normalize(v3_add_scaled(v3_scale(d, eta), facing, eta * cos_i - cos_t));
+  return v3_select(reflect, reflect_about(d, facing), refracted);
 }
 
 #endif

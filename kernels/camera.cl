@@ -15,26 +15,26 @@
  * Jitter: uniform inside the stratum; within each group of 16 samples the strata are visited in
  * an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every single
  * sample is uniform over the pixel and any sample count is unbiased. */
-CLPT_INLINE float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
+CLPT_INLINE Float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
   const uint k = sample & 15u;
-  if (sampler == CLPT_SAMPLER_GRID) {
-    return (float2)(((float)(k & 3u) + 0.5f) * 0.25f, ((float)(k >> 2) + 0.5f) * 0.25f);
-  }
-  const uint4 shuffle = philox4x32_10((uint4)(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
-  const uint stratum = ((shuffle.x | 1u) * k + shuffle.y) & 15u;
-  const float4 u = rng_uniform4(key, pixel, sample, 0u);
-  return (float2)(((float)(stratum & 3u) + u.x) * 0.25f, ((float)(stratum >> 2) + u.y) * 0.25f);
+  const Philox4 shuffle = philox4x32_10(philox4(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
+  const Uniform4 u = rng_uniform4(key, pixel, sample, 0u);
+  const bool grid = sampler == CLPT_SAMPLER_GRID;
+  const uint stratum = grid ? k : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
+  const float jx = grid ? 0.5f : u.u0;
+  const float jy = grid ? 0.5f : u.u1;
+  return f2(((float)(stratum & 3u) + jx) * 0.25f, ((float)(stratum >> 2) + jy) * 0.25f);
 }
 
 /* Unit direction of the camera ray through image position (col + sx, row + sy). */
-CLPT_INLINE float3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
-                                   uint row, float2 subpixel) {
+CLPT_INLINE Vec3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
+                                      uint row, Float2 subpixel) {
   const float fx = ((float)col + subpixel.x) / (float)width;
   const float fy = ((float)(height - 1u - row) + subpixel.y) / (float)height;
-  const float3 on_sensor = load_float3(camera->sensor_center) +
-                           load_float3(camera->sensor_right) * (fx - 0.5f) +
-                           load_float3(camera->sensor_up) * (fy - 0.5f);
-  return normalize(on_sensor);
+  Vec3 on_sensor = v3_load(camera->sensor_center);
+  on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_right), fx - 0.5f);
+  on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_up), fy - 0.5f);
+  return v3_normalize(on_sensor);
 }
 
 #endif

@@ -11,27 +11,28 @@
 #include "maths.cl"
 
 typedef struct PixelAccumulator {
-  float3 sum;
-  float3 sum_sq;
+  Vec3 sum;
+  Vec3 sum_sq;
   float valid_samples;
   uint segments;
 } PixelAccumulator;
 
 CLPT_INLINE PixelAccumulator pixel_accumulator_new(void) {
   PixelAccumulator acc;
-  acc.sum = (float3)(0.0f);
-  acc.sum_sq = (float3)(0.0f);
+  acc.sum = v3_splat(0.0f);
+  acc.sum_sq = v3_splat(0.0f);
   acc.valid_samples = 0.0f;
   acc.segments = 0u;
   return acc;
 }
 
-CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, float3 radiance, uint segments) {
+CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, Vec3 radiance, uint segments) {
   acc->segments += segments;
-  if (!all_finite3(radiance)) return;
-  acc->sum += radiance;
-  acc->sum_sq += radiance * radiance;
-  acc->valid_samples += 1.0f;
+  const bool valid = v3_all_finite(radiance);
+  const Vec3 value = v3_select(valid, radiance, v3_splat(0.0f));
+  acc->sum = v3_add(acc->sum, value);
+  acc->sum_sq = v3_add(acc->sum_sq, v3_mul(value, value));
+  acc->valid_samples += valid ? 1.0f : 0.0f;
 }
 
 CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {

@@ -1,22 +1,61 @@
-/* maths.cl: small vector helpers shared by every stage.
+/* maths.cl: the scalar vector type and helpers every stage uses.
+ *
+ * Vec3 is a struct of three floats, not OpenCL's float3: PoCL vectorises a kernel across
+ * work-items (8 or 16 per SIMD instruction on a CPU) only when every instruction is scalar, and
+ * a single float3 operation stopped it (measured: the same 8-sphere test ran 8x slower written
+ * with float3). GPUs compile both the same way. For the same reason no helper returns an OpenCL
+ * vector type, and stage functions are always inlined (a call also stops the vectoriser).
  *
  * unit_circle() replaces sin/cos: PoCL's accurate libm sin/cos took two thirds of a naive
  * path-tracing kernel's time (numerics.md). A quadrant reduction plus short Taylor polynomials
- * on [-pi/4, pi/4] is accurate to about 2e-7 absolute, branch-free and vectorisable. */
+ * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free. */
 #ifndef CLPT_MATHS_CL
 #define CLPT_MATHS_CL
 
 #define CLPT_PI 3.14159265358979323846f
-
-/* Stage functions are inlined into every kernel: PoCL vectorises a kernel across work-items only
- * when its body has no calls left, and GPUs avoid the call overhead. */
 #define CLPT_INLINE inline __attribute__((always_inline))
 
-CLPT_INLINE float3 load_float3(const float v[3]) { return (float3)(v[0], v[1], v[2]); }
-CLPT_INLINE float3 load_global_float3(__global const float* v) { return (float3)(v[0], v[1], v[2]); }
+typedef struct Vec3 {
+  float x, y, z;
+} Vec3;
+
+CLPT_INLINE Vec3 v3(float x, float y, float z) {
+  Vec3 v;
+  v.x = x;
+  v.y = y;
+  v.z = z;
+  return v;
+}
+CLPT_INLINE Vec3 v3_splat(float s) { return v3(s, s, s); }
+CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], v[1], v[2]); }
+CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], v[1], v[2]); }
+CLPT_INLINE Vec3 v3_add(Vec3 a, Vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+CLPT_INLINE Vec3 v3_sub(Vec3 a, Vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+CLPT_INLINE Vec3 v3_mul(Vec3 a, Vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
+CLPT_INLINE Vec3 v3_scale(Vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
+CLPT_INLINE Vec3 v3_neg(Vec3 a) { return v3(-a.x, -a.y, -a.z); }
+CLPT_INLINE float v3_dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+/* a + s b */
+CLPT_INLINE Vec3 v3_add_scaled(Vec3 a, Vec3 b, float s) { return v3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
+CLPT_INLINE Vec3 v3_normalize(Vec3 a) { return v3_scale(a, 1.0f / sqrt(v3_dot(a, a))); }
+/* Component-wise choice. Never write `c ? vec_a : vec_b` on Vec3: a select of a whole struct
+ * stops PoCL's vectoriser ("instruction return type cannot be vectorized"). */
+CLPT_INLINE Vec3 v3_select(bool c, Vec3 a, Vec3 b) { return v3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z); }
+CLPT_INLINE bool v3_is_zero(Vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
+
+typedef struct Float2 {
+  float x, y;
+} Float2;
+
+CLPT_INLINE Float2 f2(float x, float y) {
+  Float2 v;
+  v.x = x;
+  v.y = y;
+  return v;
+}
 
 /* (cos 2 pi u, sin 2 pi u) for u in [0, 1]. */
-CLPT_INLINE float2 unit_circle(float u) {
+CLPT_INLINE Float2 unit_circle(float u) {
   const float quadrant = rint(u * 4.0f);
   const float x = 2.0f * CLPT_PI * (u - 0.25f * quadrant); /* in [-pi/4, pi/4] */
   const float x2 = x * x;
@@ -25,34 +64,59 @@ CLPT_INLINE float2 unit_circle(float u) {
   const float c =
       1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 +
                                                                           x2 * (-1.0f / 3628800)))));
+  /* Rotate (c, s) by q quarter turns, with selects rather than branches. */
   const int q = ((int)quadrant) & 3;
-  /* Rotate (c, s) by q quarter turns. */
-  const float cos_out = q == 0 ? c : (q == 1 ? -s : (q == 2 ? -c : s));
-  const float sin_out = q == 0 ? s : (q == 1 ? c : (q == 2 ? -s : -c));
-  return (float2)(cos_out, sin_out);
+  const float odd_c = (q & 1) ? -s : c; /* q = 1: (-s, c); q = 3: (s, -c) after the sign below */
+  const float odd_s = (q & 1) ? c : s;
+  const float sign = (q & 2) ? -1.0f : 1.0f;
+  return f2(sign * odd_c, sign * odd_s);
 }
 
-/* Orthonormal basis around unit n (Duff et al., JCGT 2017): branch-free, continuous except
- * across n.z = 0's sign. Returns tangent in *t and bitangent in *b, (t, b, n) right-handed. */
-CLPT_INLINE void orthonormal_basis(float3 n, float3* t, float3* b) {
+/* u^a for u in [0, 1] and a > 0, to about 3e-7 relative: log2 from the exponent bits and an
+ * atanh series, exp2 from a Taylor polynomial and the exponent bits. The library pow is a call
+ * PoCL cannot vectorise and its exp2/log2 use 2-wide vectors internally, which stop the vectoriser. */
+CLPT_INLINE float pow_unit(float u, float a) {
+  const uint bits = as_uint(u);
+  int e = (int)(bits >> 23) - 127;
+  float m = as_float((bits & 0x007fffffu) | 0x3f800000u); /* [1, 2) */
+  const bool high = m > 1.41421356f;
+  m = high ? 0.5f * m : m;
+  e = high ? e + 1 : e;
+  const float f = (m - 1.0f) / (m + 1.0f); /* |f| <= 0.1716 */
+  const float f2 = f * f;
+  const float ln_m = 2.0f * f * (1.0f + f2 * (1.0f / 3 + f2 * (1.0f / 5 + f2 * (1.0f / 7 + f2 * (1.0f / 9)))));
+  const float y = a * ((float)e + ln_m * 1.44269504f); /* a log2(u) <= 0 */
+  const float whole = floor(y);
+  const float z = (y - whole) * 0.693147181f; /* 2^(y - whole) = e^z, z in [0, ln 2) */
+  const float exp_z =
+      1.0f + z * (1.0f + z * (0.5f + z * (1.0f / 6 + z * (1.0f / 24 + z * (1.0f / 120 + z * (1.0f / 720 +
+      z * (1.0f / 5040 + z * (1.0f / 40320 + z * (1.0f / 362880)))))))));
+  const int k = (int)whole;
+  const float scale = as_float((uint)(max(k, -126) + 127) << 23);
+  return (u <= 0.0f || k < -126) ? 0.0f : exp_z * scale;
+}
+
+/* Orthonormal basis around unit n (Duff et al., JCGT 2017): branch-free. Returns the tangent in
+ * *t and the bitangent in *b, (t, b, n) right-handed. */
+CLPT_INLINE void orthonormal_basis(Vec3 n, Vec3* t, Vec3* b) {
   const float sign = copysign(1.0f, n.z);
   const float a = -1.0f / (sign + n.z);
   const float bxy = n.x * n.y * a;
-  *t = (float3)(1.0f + sign * n.x * n.x * a, sign * bxy, -sign * n.x);
-  *b = (float3)(bxy, sign + n.y * n.y * a, -n.y);
+  *t = v3(1.0f + sign * n.x * n.x * a, sign * bxy, -sign * n.x);
+  *b = v3(bxy, sign + n.y * n.y * a, -n.y);
 }
 
 /* Local direction (x, y, z around n) to world. */
-CLPT_INLINE float3 to_world(float3 local_dir, float3 n) {
-  float3 t, b;
+CLPT_INLINE Vec3 to_world(Vec3 local_dir, Vec3 n) {
+  Vec3 t, b;
   orthonormal_basis(n, &t, &b);
-  return local_dir.x * t + local_dir.y * b + local_dir.z * n;
+  return v3_add(v3_add(v3_scale(t, local_dir.x), v3_scale(b, local_dir.y)), v3_scale(n, local_dir.z));
 }
 
 /* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
  * may fold `x != x` to false (numerics.md). */
 CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
-CLPT_INLINE bool all_finite3(float3 v) {
+CLPT_INLINE bool v3_all_finite(Vec3 v) {
   return is_finite_bits(v.x) && is_finite_bits(v.y) && is_finite_bits(v.z);
 }
 

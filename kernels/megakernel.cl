@@ -4,11 +4,6 @@
  * a time, each path an iterative loop over the stages of path.cl, and writes the pixel's pass
  * statistics. Reads: the sphere buffer and GpuRenderParams. Writes: pass[pixel - pixel_begin]. */
 #include "types.h"
-#include "maths.cl"
-#include "rng.cl"
-#include "camera.cl"
-#include "intersect.cl"
-#include "bsdf.cl"
 #include "path.cl"
 #include "film.cl"
 

@@ -29,10 +29,10 @@
 #endif
 
 typedef struct PathState {
-  float3 origin;     /* camera-relative world units */
-  float3 direction;  /* unit */
-  float3 throughput; /* product of BSDF weights so far */
-  float3 radiance;   /* light gathered so far */
+  Vec3 origin;       /* camera-relative world units */
+  Vec3 direction;    /* unit */
+  Vec3 throughput;   /* product of BSDF weights so far */
+  Vec3 radiance;     /* light gathered so far */
   uint pixel;        /* global pixel index, row-major, row 0 at the top */
   uint sample;       /* global sample index within the pixel */
   uint bounce;       /* index of the current segment: 0 = camera ray */
@@ -51,12 +51,12 @@ CLPT_INLINE RngKey rng_key_of(const GpuRenderParams* params) {
 CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint sample) {
   const uint col = pixel % params->width;
   const uint row = pixel / params->width;
-  const float2 subpixel = camera_subpixel(rng_key_of(params), params->sampler, pixel, sample);
+  const Float2 subpixel = camera_subpixel(rng_key_of(params), params->sampler, pixel, sample);
   PathState path;
-  path.origin = (float3)(0.0f);
+  path.origin = v3_splat(0.0f);
   path.direction = camera_ray_direction(&params->camera, params->width, params->height, col, row, subpixel);
-  path.throughput = (float3)(1.0f);
-  path.radiance = (float3)(0.0f);
+  path.throughput = v3_splat(1.0f);
+  path.radiance = v3_splat(0.0f);
   path.pixel = pixel;
   path.sample = sample;
   path.bounce = 0u;
@@ -67,60 +67,61 @@ CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint
 }
 
 CLPT_INLINE Hit path_intersect(const PathState* path, __global const GpuSphere* spheres,
-                          const GpuRenderParams* params) {
+                               const GpuRenderParams* params) {
   return scene_intersect(spheres, params->sphere_count, path->origin, path->direction,
                          params->ray_epsilon, path->skip_sphere);
 }
 
-/* Scatter at a non-emitting surface: new direction and throughput. */
-CLPT_INLINE void path_scatter(PathState* path, __global const GpuSphere* sphere, int sphere_index,
-                         float3 hit_point, float3 normal, float4 u) {
-  const float3 rho = load_global_float3(sphere->reflectance);
-  float3 weight = (float3)(0.0f);
-  float3 next = path->direction;
+/* Next direction and throughput weight at a non-emitting surface. Materials left out of the
+ * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
+CLPT_INLINE Vec3 material_sample(__global const GpuSphere* sphere, Vec3 d, Vec3 normal, Uniform4 u,
+                                 Vec3* weight) {
+  const Vec3 rho = v3_load_global(sphere->reflectance);
   const uint material = sphere->material;
-  if (material == CLPT_MATERIAL_LAMBERTIAN) {
-    next = bsdf_lambertian_sample(path->direction, normal, rho, u, &weight);
-  }
+  Vec3 next = bsdf_lambertian_sample(d, normal, rho, u, weight);
 #if CLPT_HAS_PHONG
-  else if (material == CLPT_MATERIAL_PHONG) {
-    next = bsdf_phong_sample(path->direction, normal, rho, sphere->phong_exponent, u, &weight);
-  }
+  Vec3 phong_weight;
+  const Vec3 phong = bsdf_phong_sample(d, normal, rho, sphere->phong_exponent, u, &phong_weight);
+  next = v3_select(material == CLPT_MATERIAL_PHONG, phong, next);
+  *weight = v3_select(material == CLPT_MATERIAL_PHONG, phong_weight, *weight);
 #endif
 #if CLPT_HAS_GLASS
-  else if (material == CLPT_MATERIAL_GLASS) {
-    next = bsdf_glass_sample(path->direction, normal, rho, sphere->ior, u, &weight);
-  }
+  Vec3 glass_weight;
+  const Vec3 glass = bsdf_glass_sample(d, normal, rho, sphere->ior, u, &glass_weight);
+  next = v3_select(material == CLPT_MATERIAL_GLASS, glass, next);
+  *weight = v3_select(material == CLPT_MATERIAL_GLASS, glass_weight, *weight);
 #endif
-  path->throughput *= weight;
-  path->origin = hit_point;
-  path->direction = next;
-  path->skip_sphere = dot(next, normal) > 0.0f ? sphere_index : -1;
-  path->bounce += 1u;
-  if (weight.x == 0.0f && weight.y == 0.0f && weight.z == 0.0f) path->alive = 0;
+  return next;
 }
 
+/* One shading event: a miss ends the path (black background); an emitter adds its emission and
+ * ends it (emitters do not reflect); past max_bounces the path ends; otherwise the material
+ * scatters it. Written as selects over the cases, not branches, so that PoCL vectorises it. */
 CLPT_INLINE void path_shade(PathState* path, Hit hit, __global const GpuSphere* spheres,
-                       const GpuRenderParams* params) {
+                            const GpuRenderParams* params) {
   path->segments += 1u;
-  if (hit.sphere < 0) { /* escaped: black background */
-    path->alive = 0;
-    return;
-  }
-  __global const GpuSphere* sphere = &spheres[hit.sphere];
-  if (sphere->material == CLPT_MATERIAL_EMITTER) { /* emitters do not reflect */
-    path->radiance += path->throughput * load_global_float3(sphere->emission);
-    path->alive = 0;
-    return;
-  }
-  if (path->bounce >= params->max_bounces) {
-    path->alive = 0;
-    return;
-  }
-  const float3 hit_point = path->origin + hit.t * path->direction;
-  const float3 normal = sphere_normal_at(sphere, path->origin, path->direction, hit.t);
-  const float4 u = rng_uniform4(rng_key_of(params), path->pixel, path->sample, 1u + path->bounce);
-  path_scatter(path, sphere, hit.sphere, hit_point, normal, u);
+  const bool missed = hit.sphere < 0;
+  const int index = missed ? 0 : hit.sphere;
+  __global const GpuSphere* sphere = &spheres[index];
+  const bool emitter = !missed && sphere->material == CLPT_MATERIAL_EMITTER;
+  const bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
+
+  const Vec3 emitted = v3_mul(path->throughput, v3_load_global(sphere->emission));
+  path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
+
+  const float t = missed ? 0.0f : hit.t;
+  const Vec3 hit_point = v3_add_scaled(path->origin, path->direction, t);
+  const Vec3 normal = sphere_normal_at(sphere, path->origin, path->direction, t);
+  const Uniform4 u = rng_uniform4(rng_key_of(params), path->pixel, path->sample, 1u + path->bounce);
+  Vec3 weight;
+  const Vec3 next = material_sample(sphere, path->direction, normal, u, &weight);
+
+  path->throughput = v3_select(scatters, v3_mul(path->throughput, weight), path->throughput);
+  path->origin = v3_select(scatters, hit_point, path->origin);
+  path->direction = v3_select(scatters, next, path->direction);
+  path->skip_sphere = scatters && v3_dot(next, normal) > 0.0f ? index : -1;
+  path->bounce += scatters ? 1u : 0u;
+  path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
 }
 
 #endif

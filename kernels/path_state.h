@@ -1,19 +1,31 @@
 /* path_state.h: the wavefront's per-path state, declared once.
  *
  * Valid C++ and OpenCL C. CLPT_PATH_STATE_FIELDS lists every structure-of-arrays buffer with its
- * element type, size in bytes and meaning; the device expands it into kernel parameters and
- * load/store helpers (wavefront.cl), the host into buffer allocations and kernel arguments
- * (wavefront_renderer.cpp), so the two cannot drift apart. One element per path slot. */
+ * element type, size in bytes and meaning; the device expands it into kernel parameters
+ * (wavefront.cl), the host into buffer allocations and kernel arguments
+ * (wavefront_renderer.cpp), so the two cannot drift apart. One element per path slot, one scalar
+ * per buffer: scalar loads keep the kernels vectorisable on PoCL and coalesced on GPUs. */
 #ifndef CLPT_PATH_STATE_H
 #define CLPT_PATH_STATE_H
 
-/*  X(type,   name,        bytes, meaning) */
+/*  X(type, name, bytes, meaning) */
 #define CLPT_PATH_STATE_FIELDS(X)                                                                 \
-  X(float4, origin, 16, "xyz: ray origin, camera-relative world units")                          \
-  X(float4, direction, 16, "xyz: unit ray direction")                                            \
-  X(float4, throughput, 16, "rgb: product of BSDF weights so far")                               \
-  X(float4, radiance, 16, "rgb: light gathered so far")                                          \
-  X(uint4, ids, 16, "x: job index in the pass, y: bounce, z: segments traced, w: skip sphere + 1") \
+  X(float, origin_x, 4, "ray origin, camera-relative world units")                               \
+  X(float, origin_y, 4, "")                                                                      \
+  X(float, origin_z, 4, "")                                                                      \
+  X(float, direction_x, 4, "unit ray direction")                                                 \
+  X(float, direction_y, 4, "")                                                                   \
+  X(float, direction_z, 4, "")                                                                   \
+  X(float, throughput_r, 4, "product of BSDF weights so far")                                    \
+  X(float, throughput_g, 4, "")                                                                  \
+  X(float, throughput_b, 4, "")                                                                  \
+  X(float, radiance_r, 4, "light gathered so far")                                               \
+  X(float, radiance_g, 4, "")                                                                    \
+  X(float, radiance_b, 4, "")                                                                    \
+  X(uint, job, 4, "job index in the pass: sample (job / pixel_count), pixel (job % pixel_count)") \
+  X(uint, bounce, 4, "index of the current segment, 0 = camera ray")                            \
+  X(uint, segments, 4, "segments traced so far")                                                 \
+  X(int, skip_sphere, 4, "sphere the ray leaves on its outer side, or -1")                       \
   X(float, hit_t, 4, "distance to the closest hit, INFINITY for a miss")                         \
   X(int, hit_sphere, 4, "sphere hit, -1 for a miss")                                             \
   X(int, alive, 4, "1 while the path continues after shading")

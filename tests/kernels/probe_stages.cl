@@ -7,18 +7,23 @@
 #include "intersect.cl"
 #include "bsdf.cl"
 
+CLPT_INLINE Vec3 v3_from4(float4 v) { return v3(v.x, v.y, v.z); }
+CLPT_INLINE float4 v3_to4(Vec3 v) { return (float4)(v.x, v.y, v.z, 0.0f); }
+
 /* Philox4x32-10 of (counter[i], key): 4 words per counter. */
 __kernel void probe_philox(__global const uint4* counters, uint k0, uint k1, __global uint4* out) {
   const size_t i = get_global_id(0);
-  out[i] = philox4x32_10(counters[i], k0, k1);
+  const uint4 c = counters[i];
+  const Philox4 r = philox4x32_10(philox4(c.x, c.y, c.z, c.w), k0, k1);
+  out[i] = (uint4)(r.x, r.y, r.z, r.w);
 }
 
 /* Closest hit of ray i (origin with the sphere to skip in .w, unit direction) against spheres. */
 __kernel void probe_intersect(__global const GpuSphere* spheres, uint count,
                               __global const float4* rays, float t_min, __global float2* out) {
   const size_t i = get_global_id(0);
-  const float3 o = rays[2 * i].xyz;
-  const float3 d = rays[2 * i + 1].xyz;
+  const Vec3 o = v3_from4(rays[2 * i]);
+  const Vec3 d = v3_from4(rays[2 * i + 1]);
   const Hit hit = scene_intersect(spheres, count, o, d, t_min, (int)rays[2 * i].w);
   out[i] = (float2)(hit.t, (float)hit.sphere);
 }
@@ -28,9 +33,9 @@ __kernel void probe_camera(const GpuRenderParams params, __global const float4* 
                            __global float4* out) {
   const size_t i = get_global_id(0);
   const float4 r = requests[i]; /* col, row, subpixel x, subpixel y */
-  const float3 d = camera_ray_direction(&params.camera, params.width, params.height, (uint)r.x,
-                                        (uint)r.y, r.zw);
-  out[i] = (float4)(d, 0.0f);
+  const Vec3 d = camera_ray_direction(&params.camera, params.width, params.height, (uint)r.x,
+                                      (uint)r.y, f2(r.z, r.w));
+  out[i] = v3_to4(d);
 }
 
 /* Fresnel reflectance for (eta, cos_i) pairs; cos_t from Snell, -1 marks total internal reflection. */
@@ -44,11 +49,17 @@ __kernel void probe_fresnel(__global const float2* in, __global float* out) {
 /* Glass scattering of direction d at normal n with uniforms u: new direction and weight. */
 __kernel void probe_glass(__global const float4* in, float ior, __global float4* out) {
   const size_t i = get_global_id(0);
-  float3 weight;
-  const float3 dir = bsdf_glass_sample(in[3 * i].xyz, in[3 * i + 1].xyz, (float3)(1.0f), ior,
-                                       in[3 * i + 2], &weight);
-  out[2 * i] = (float4)(dir, 0.0f);
-  out[2 * i + 1] = (float4)(weight, 0.0f);
+  const float4 u4 = in[3 * i + 2];
+  Uniform4 u;
+  u.u0 = u4.x;
+  u.u1 = u4.y;
+  u.u2 = u4.z;
+  u.u3 = u4.w;
+  Vec3 weight;
+  const Vec3 dir = bsdf_glass_sample(v3_from4(in[3 * i]), v3_from4(in[3 * i + 1]), v3_splat(1.0f), ior,
+                                     u, &weight);
+  out[2 * i] = v3_to4(dir);
+  out[2 * i + 1] = v3_to4(weight);
 }
 
 /* n directions: mode 0 cosine hemisphere around +z, mode 1 Phong lobe (exponent) around +z,
@@ -59,14 +70,22 @@ __kernel void probe_sample_directions(uint mode, float exponent, uint k0, uint k
   RngKey key;
   key.k0 = k0;
   key.k1 = k1;
-  const float4 u = rng_uniform4(key, 0u, i, 1u);
-  const float3 axis = (float3)(0.0f, 0.0f, 1.0f);
-  const float3 d = mode == 0u ? sample_cosine_hemisphere(axis, u.xy) : sample_phong_lobe(axis, exponent, u.xy);
-  out[i] = (float4)(d, 0.0f);
+  const Uniform4 u = rng_uniform4(key, 0u, i, 1u);
+  const Vec3 axis = v3(0.0f, 0.0f, 1.0f);
+  const Vec3 d = mode == 0u ? sample_cosine_hemisphere(axis, u.u0, u.u1)
+                            : sample_phong_lobe(axis, exponent, u.u0, u.u1);
+  out[i] = v3_to4(d);
 }
 
 /* unit_circle(u) for each u. */
 __kernel void probe_unit_circle(__global const float* u, __global float2* out) {
   const size_t i = get_global_id(0);
-  out[i] = unit_circle(u[i]);
+  const Float2 c = unit_circle(u[i]);
+  out[i] = (float2)(c.x, c.y);
+}
+
+/* pow_unit(u, a) for each (u, a). */
+__kernel void probe_pow_unit(__global const float2* in, __global float* out) {
+  const size_t i = get_global_id(0);
+  out[i] = pow_unit(in[i].x, in[i].y);
 }
