@@ -4,7 +4,9 @@
  * element type, size in bytes and meaning; the device expands it into kernel parameters
  * (wavefront.cl), the host into buffer allocations and kernel arguments
  * (wavefront_renderer.cpp), so the two cannot drift apart. One element per path slot, one scalar
- * per buffer: scalar loads keep the kernels vectorisable on PoCL and coalesced on GPUs. */
+ * per buffer: scalar loads keep the kernels vectorisable on PoCL and coalesced on GPUs.
+ * The persistent fields exist twice: compaction copies the surviving paths from one set into the
+ * other, densely, so every stage kernel reads slot i for work-item i (no index indirection). */
 #ifndef CLPT_PATH_STATE_H
 #define CLPT_PATH_STATE_H
 
@@ -25,7 +27,10 @@
   X(uint, job, 4, "job index in the pass: sample (job / pixel_count), pixel (job % pixel_count)") \
   X(uint, bounce, 4, "index of the current segment, 0 = camera ray")                            \
   X(uint, segments, 4, "segments traced so far")                                                 \
-  X(int, skip_sphere, 4, "sphere the ray leaves on its outer side, or -1")                       \
+  X(int, skip_sphere, 4, "sphere the ray leaves on its outer side, or -1")
+
+/* Per-iteration scratch, one set: written and read within one bounce. */
+#define CLPT_PATH_SCRATCH_FIELDS(X)                                                               \
   X(float, hit_t, 4, "distance to the closest hit, INFINITY for a miss")                         \
   X(int, hit_sphere, 4, "sphere hit, -1 for a miss")                                             \
   X(int, alive, 4, "1 while the path continues after shading")

@@ -1,17 +1,18 @@
 /* wavefront.cl: the split wavefront execution form.
  *
- * A fixed pool of path slots lives in structure-of-arrays buffers (path_state.h). Each kernel runs
- * over a queue of slot indices, so it touches only the paths that need it:
- *   wf_generate   free slots   -> new camera paths for the next jobs    (appended to the active queue)
- *   wf_intersect  active queue -> hit_t, hit_sphere
- *   wf_shade      active queue -> emission, next ray or end; ended paths leave their radiance in
- *                                 the job's sample slot
- *   wf_compact    active queue -> next active queue and free queue (atomic appends)
- *   wf_film       every pixel  -> GpuPixelPass, summing its samples in sample order
+ * A pool of path slots lives in structure-of-arrays buffers (path_state.h); the active paths
+ * always occupy slots [0, active_count) densely, so each kernel runs over exactly the paths that
+ * need it and work-item i touches slot i:
+ *   wf_generate   slots [active, active + fresh) <- new camera paths for the pass's next jobs
+ *   wf_intersect  active paths -> hit_t, hit_sphere
+ *   wf_shade      active paths -> emission, next ray or end; an ended path leaves its radiance in
+ *                 its job's result slot
+ *   wf_compact    surviving paths copied densely into the other state set (atomic appends)
+ *   wf_film       every pixel -> GpuPixelPass, summing its samples in sample order
  * The physics is path.cl's: these kernels only load a PathState, call the same stage function
- * as the megakernel, and store it. A job j of a pass is sample (sample_begin + j / pixel_count)
- * of pixel (pixel_begin + j % pixel_count); its result depends on nothing else, so the image equals
- * the megakernel's up to float rounding whatever the queue order or the number of paths in flight. */
+ * as the megakernel, and store it. Job j of a pass is sample (sample_begin + j / pixel_count) of
+ * pixel (pixel_begin + j % pixel_count); its result depends on nothing else, so the image equals
+ * the megakernel's up to float rounding whatever the slot order or the number of paths in flight. */
 #include "types.h"
 #include "path_state.h"
 #include "path.cl"
@@ -19,9 +20,13 @@
 
 #define CLPT_STATE_PARAM(type, name, bytes, doc) , __global type* name
 #define CLPT_STATE_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_STATE_PARAM)
-/* The state buffers, as arguments to path_load / path_store. */
+#define CLPT_SCRATCH_PARAMS CLPT_PATH_SCRATCH_FIELDS(CLPT_STATE_PARAM)
 #define CLPT_STATE_NAME(type, name, bytes, doc) , name
 #define CLPT_STATE_ARGS CLPT_PATH_STATE_FIELDS(CLPT_STATE_NAME)
+/* The compaction's destination set: the same fields with a `to_` prefix. */
+#define CLPT_TO_PARAM(type, name, bytes, doc) , __global type* to_##name
+#define CLPT_TO_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_TO_PARAM)
+#define CLPT_COPY_FIELD(type, name, bytes, doc) to_##name[to] = name[from];
 
 CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_STATE_PARAMS) {
   PathState p;
@@ -58,47 +63,41 @@ CLPT_INLINE void path_store(uint slot, uint job_index, const PathState* p CLPT_S
   skip_sphere[slot] = p->skip_sphere;
 }
 
-/* Consumes free[free_begin + i] for i < count; writes active[active_begin + i]. */
-__kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint count,
-                          __global const uint* free_slots, uint free_begin,
-                          __global uint* active, uint active_begin CLPT_STATE_PARAMS) {
+/* Starts jobs job_begin + i in slots slot_begin + i, for i < count. */
+__kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint slot_begin, uint count
+                              CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint slot = free_slots[free_begin + i];
   const uint job_index = job_begin + i;
   const PathState p = path_begin(&params, params.pixel_begin + job_index % params.pixel_count,
                                  params.sample_begin + job_index / params.pixel_count);
-  path_store(slot, job_index, &p CLPT_STATE_ARGS);
-  active[active_begin + i] = slot;
+  path_store(slot_begin + i, job_index, &p CLPT_STATE_ARGS);
 }
 
-__kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderParams params,
-                           __global const uint* active, uint count CLPT_STATE_PARAMS) {
+__kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderParams params, uint count
+                               CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint slot = active[i];
-  const PathState p = path_load(slot, &params CLPT_STATE_ARGS);
+  const PathState p = path_load(i, &params CLPT_STATE_ARGS);
   const Hit hit = path_intersect(&p, spheres, &params);
-  hit_t[slot] = hit.t;
-  hit_sphere[slot] = hit.sphere;
+  hit_t[i] = hit.t;
+  hit_sphere[i] = hit.sphere;
 }
 
 /* Ended paths write their job's result: radiance in results[4 job + 0..2], the segment count's
  * bits in results[4 job + 3]. */
-__kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams params,
-                       __global const uint* active, uint count, __global float* results
-                           CLPT_STATE_PARAMS) {
+__kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams params, uint count,
+                       __global float* results CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const uint slot = active[i];
-  PathState p = path_load(slot, &params CLPT_STATE_ARGS);
+  PathState p = path_load(i, &params CLPT_STATE_ARGS);
   Hit hit;
-  hit.t = hit_t[slot];
-  hit.sphere = hit_sphere[slot];
+  hit.t = hit_t[i];
+  hit.sphere = hit_sphere[i];
   path_shade(&p, hit, spheres, &params);
-  const uint job_index = job[slot];
-  path_store(slot, job_index, &p CLPT_STATE_ARGS);
-  alive[slot] = p.alive;
+  const uint job_index = job[i];
+  path_store(i, job_index, &p CLPT_STATE_ARGS);
+  alive[i] = p.alive;
   if (!p.alive) {
     results[4 * job_index + 0] = p.radiance.x;
     results[4 * job_index + 1] = p.radiance.y;
@@ -107,15 +106,13 @@ __kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams 
   }
 }
 
-/* counters[0]: next active queue length, counters[1]: free queue length (both appended to). */
-__kernel void wf_compact(__global const uint* active, uint count, __global uint* next_active,
-                         __global uint* free_slots, __global volatile uint* counters
-                             CLPT_STATE_PARAMS) {
-  const uint i = (uint)get_global_id(0);
-  if (i >= count) return;
-  const uint slot = active[i];
-  if (alive[slot]) next_active[atomic_inc(&counters[0])] = slot;
-  else free_slots[atomic_inc(&counters[1])] = slot;
+/* Copies every surviving path to the next free slot of the other set; *survivors counts them. */
+__kernel void wf_compact(uint count, __global volatile uint* survivors
+                             CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
+  const uint from = (uint)get_global_id(0);
+  if (from >= count || !alive[from]) return;
+  const uint to = atomic_inc(survivors);
+  CLPT_PATH_STATE_FIELDS(CLPT_COPY_FIELD)
 }
 
 /* One work-item per pixel of the pass: its samples summed in sample order, as the megakernel does. */

@@ -1,6 +1,7 @@
 // The split wavefront execution form (kernels/wavefront.cl): a pool of path slots in
-// structure-of-arrays buffers, one kernel per stage over compacted queues, finished slots refilled
-// with the pass's next samples until every sample of the pass is done.
+// structure-of-arrays buffers, one kernel per stage over the densely packed active paths,
+// compaction into a second set of buffers after shading, and freed slots refilled with the pass's
+// next samples until every sample of the pass is done.
 #pragma once
 
 #include <map>
@@ -26,19 +27,22 @@ class WavefrontRenderer : public Renderer {
 
   uint32_t paths_in_flight() const { return paths_; }
 
-  // 16384 paths per compute unit, within [65536, 4M]: enough to fill a GPU's lanes many times
-  // over and to give PoCL long vectorisable queues, at about 110 bytes per path.
+  // GPUs: 16384 paths per compute unit, within [65536, 4M], enough to fill the lanes many times
+  // over. CPUs: 8192 per compute unit, so that the state (about 140 bytes a path) stays in cache
+  // while still amortising launch overhead (measured on PoCL: see README, "Speed").
   static uint32_t default_paths_in_flight(const DeviceInfo& device);
   static constexpr size_t kMaxJobBytes = size_t(256) << 20;
   static constexpr size_t kDefaultLocalSize = 64;
 
  private:
-  void bind_state(Kernel& kernel, cl_uint first_index);
+  // Binds a set of state buffers to consecutive arguments from first_index; returns the next index.
+  cl_uint bind(Kernel& kernel, cl_uint first_index, const std::vector<Buffer>& buffers);
   // Keeps a launch's event until collect_times(), after the next blocking call, adds it up.
   void record(const char* label, EventHandle event);
   void collect_times();
-  void generate(const GpuRenderParams& params, uint32_t job_begin, uint32_t count,
-                uint32_t free_begin, uint32_t active_begin);
+  void generate(const GpuRenderParams& params, uint32_t job_begin, uint32_t slot_begin, uint32_t count);
+  void intersect_and_shade(const GpuRenderParams& params, uint32_t active);
+  uint32_t compact(uint32_t active);
 
   DeviceContext& ctx_;
   uint32_t paths_;
@@ -46,8 +50,9 @@ class WavefrontRenderer : public Renderer {
   ProgramHandle program_;
   Kernel generate_, intersect_, shade_, compact_, film_;
   Buffer spheres_;
-  std::vector<Buffer> state_;  // one per CLPT_PATH_STATE_FIELDS entry
-  Buffer active_, next_active_, free_, counters_, results_, pass_;
+  std::vector<Buffer> state_, next_state_;  // one per CLPT_PATH_STATE_FIELDS entry, twice
+  std::vector<Buffer> scratch_;               // one per CLPT_PATH_SCRATCH_FIELDS entry
+  Buffer survivors_, results_, pass_;
   std::map<std::string, StageTime> times_;
   std::vector<std::pair<const char*, EventHandle>> pending_;
 };
