@@ -51,9 +51,11 @@ const char* execution_form_name(ExecutionForm form) {
   return form == ExecutionForm::Wavefront ? "wavefront" : "megakernel";
 }
 
+// CPUs (PoCL): the wavefront, whose loop-free stage kernels PoCL vectorises across work-items
+// while the megakernel's per-path loop stays scalar (measured with `clpt bench`, README "Speed").
+// GPUs: the megakernel, which keeps paths in registers; no GPU has been measured yet.
 ExecutionForm default_form_for(const DeviceInfo& device) {
-  (void)device;
-  return ExecutionForm::Megakernel;
+  return device.is_cpu ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
 }
 
 uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
