@@ -4,8 +4,14 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
-clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}"
+clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
 clpt_build -DCLPT_BUILD_TESTS=ON
 "$CLPT_BUILD/clpt" devices
 cd "$CLPT_BUILD"
 ctest --output-on-failure -j "$(nproc)" "$@"
+# The whole suite (no ctest arguments) goes on with a 60 s fuzz run of the scene loader and the
+# unit and bad-input tests under ASan + UBSan, each in its own build directory (~5 min more).
+if [[ $# -eq 0 ]]; then
+  "$CLPT_ROOT/scripts/fuzz.sh" 60
+  "$CLPT_ROOT/scripts/sanitize.sh"
+fi

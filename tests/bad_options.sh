@@ -46,6 +46,33 @@ expect 2 "does not exist" -- render "$scene" -o no/such/dir/out.exr
 expect 3 "missing.toml: cannot open scene file" -- render missing.toml -o out.exr
 expect 2 "subcommand" -- frobnicate
 
+# Limits, checked before anything is allocated (so they fail fast), and --resume. Their inputs
+# live beside WORK_DIR, which must stay empty.
+inputs="$work.inputs"
+rm -rf "$inputs" && mkdir -p "$inputs"
+{
+  printf '[image]\nwidth = 8\nheight = 8\n[camera]\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, -1.0]\n'
+  printf '[[sphere]]\ncenter = [0.0, 0.0, -5.0]\nradius = 1.0\nmaterial = { type = "emitter", emission = [1.0, 1.0, 1.0] }\n'
+  for i in $(seq 1 4999); do
+    printf '[[sphere]]\ncenter = [%d.0, 0.0, -20.0]\nradius = 0.1\nmaterial = { type = "lambertian", reflectance = [0.5, 0.5, 0.5] }\n' "$i"
+  done
+} >"$inputs/many_spheres.toml"
+start_ns=$(date +%s%N)
+expect 2 "--width/--height: the image 16384x16384 has 268435456 pixels; at most 67108864 (2^26) are supported" \
+  -- render "$scene" --width 16384 --height 16384 -o out.exr
+expect 3 "many_spheres.toml: sphere: the scene has 5000 spheres; at most 4096 are supported" \
+  -- render "$inputs/many_spheres.toml" -o out.exr
+elapsed_ms=$((($(date +%s%N) - start_ns) / 1000000))
+if [[ $elapsed_ms -gt 10000 ]]; then
+  echo "FAIL: the two limit checks took $elapsed_ms ms (they must fail before any allocation)"
+  failures=$((failures + 1))
+fi
+"$clpt" render "$scene" --width 8 --height 8 --spp 1 --sampler jitter -q --checkpoint "$inputs/seed1.ckpt" \
+  -o "$inputs/seed1.pfm" || { echo "FAIL: could not write a checkpoint"; failures=$((failures + 1)); }
+expect 2 "--resume missing.ckpt: cannot open checkpoint" -- render "$scene" --resume missing.ckpt -o out.exr
+expect 2 "the checkpoint's seed 1 does not match this render's seed 2" \
+  -- render "$scene" --width 8 --height 8 --sampler jitter --spp 4 --seed 2 --resume "$inputs/seed1.ckpt" -o out.exr
+
 if [[ $failures -ne 0 ]]; then
   echo "$failures bad-option case(s) failed"
   exit 1

@@ -14,6 +14,7 @@ TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint
   scene.settings.seed = seed;
   scene.settings.sampler = sampler;
   RenderRequest request;
+  request.use_kernel_cache = false;  // tests compile the kernels under test from source
   request.scene = scene;
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";

@@ -20,6 +20,7 @@ struct Variant {
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
   RenderRequest request;
+  request.use_kernel_cache = false;  // tests compile the kernels under test from source
   request.scene = load_book_scene(scene_name);
   request.scene.settings.width = 48;
   request.scene.settings.height = 36;

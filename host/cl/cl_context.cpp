@@ -1,6 +1,7 @@
 #include "cl/cl_context.h"
 
 #include "cl/cl_error.h"
+#include "cl/kernel_cache.h"
 
 namespace clpt {
 
@@ -35,6 +36,19 @@ DeviceContext::DeviceContext(const DeviceInfo& device) : device_(device), where_
 
 ProgramHandle DeviceContext::build_program(const std::string& source, const std::string& options,
                                            const std::string& label) {
+  last_build_cache_hit_ = false;
+  if (cache_) return cache_->build(*this, source, options, label, &last_build_cache_hit_);
+  return build_program_from_source(source, options, label);
+}
+
+std::shared_ptr<KernelCache> DeviceContext::use_default_kernel_cache() {
+  cache_ = std::make_shared<KernelCache>(KernelCache::default_dir());
+  return cache_;
+}
+
+ProgramHandle DeviceContext::build_program_from_source(const std::string& source,
+                                                       const std::string& options,
+                                                       const std::string& label) {
   const char* text = source.c_str();
   const size_t length = source.size();
   ProgramHandle program(

@@ -48,6 +48,7 @@ using MemHandle = ClHandle<cl_mem, clReleaseMemObject>;
 using EventHandle = ClHandle<cl_event, clReleaseEvent>;
 
 class DeviceContext;
+class KernelCache;
 
 // A device buffer of `bytes` bytes.
 class Buffer {
@@ -94,10 +95,23 @@ class DeviceContext {
   cl_context context() const { return context_.get(); }
   cl_command_queue queue() const { return queue_.get(); }
 
-  // Builds a program from full source text with the given options. On failure throws
-  // Error(DeviceError) whose message holds the device's build log.
+  // Builds a program from full source text with the given options: through the kernel cache when
+  // one is attached (a cached binary when it loads, else compiled and stored), else from source.
+  // On failure throws Error(DeviceError) whose message holds the device's build log.
   ProgramHandle build_program(const std::string& source, const std::string& options,
                               const std::string& label);
+  // Always compiles from source; the cache's own fallback.
+  ProgramHandle build_program_from_source(const std::string& source, const std::string& options,
+                                          const std::string& label);
+
+  // The kernel binary cache build_program goes through (null: none, the default, so tests and
+  // `clpt bench` always compile). use_default_kernel_cache attaches one at
+  // KernelCache::default_dir() and returns it, for its hit counts.
+  void set_kernel_cache(std::shared_ptr<KernelCache> cache) { cache_ = std::move(cache); }
+  const std::shared_ptr<KernelCache>& kernel_cache() const { return cache_; }
+  std::shared_ptr<KernelCache> use_default_kernel_cache();
+  // Whether the last build_program loaded a cached binary instead of compiling.
+  bool last_build_cache_hit() const { return last_build_cache_hit_; }
 
   // 1-D launch over global_size work-items (rounded up to a multiple of local_size when given;
   // 0 lets the driver choose). `label` names the launch in errors.
@@ -121,6 +135,8 @@ class DeviceContext {
   std::string where_;
   ContextHandle context_;
   QueueHandle queue_;
+  std::shared_ptr<KernelCache> cache_;
+  bool last_build_cache_hit_ = false;
 };
 
 }  // namespace clpt

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "render/film_raw.h"
+#include "util/atomic_file.h"
 #include "tools/bench.h"
 #include "util/error.h"
 
@@ -19,18 +19,6 @@ struct BenchOptions {
   double tolerance = 10;
 };
 
-void write_text_atomic(const std::string& path, const std::string& text) {
-  const std::string tmp = temporary_path_for(path);
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw Error(ExitCode::OutputError, "--json " + path + ": cannot write file");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) {
-    std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, "--json " + path + ": cannot write file");
-  }
-  commit_temporary(tmp, path);
-}
-
 int run(BenchConfig config, const BenchOptions& o) {
   for (const std::string& f : o.forms)
     config.forms.push_back(f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel);
@@ -40,7 +28,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   if (config.devices.empty()) config.devices = {"best"};
   const std::vector<BenchRow> rows = run_bench(config, true);
   std::printf("%s", bench_table(rows).c_str());
-  if (!o.json.empty()) write_text_atomic(o.json, bench_json(rows, config));
+  if (!o.json.empty()) write_file_atomically(o.json, bench_json(rows, config), "--json");
   if (o.baseline.empty()) return 0;
   const std::vector<std::string> regressions = bench_regressions(rows, o.baseline, o.tolerance);
   for (const std::string& r : regressions) std::printf("REGRESSION %s\n", r.c_str());

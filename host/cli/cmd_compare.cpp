@@ -12,7 +12,7 @@
 
 #include "cli/commands.h"
 #include "io/image_io.h"
-#include "render/film_raw.h"
+#include "util/atomic_file.h"
 #include "tools/image_compare.h"
 #include "util/error.h"
 

@@ -6,12 +6,16 @@
 #include <memory>
 #include <optional>
 
+#include "cl/kernel_cache.h"
 #include "cli/commands.h"
 #include "kernels/kernel_options.h"
+#include "render/checkpoint.h"
 #include "render/film_raw.h"
+#include "render/limits.h"
 #include "render/render_session.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 #ifdef CLPT_WITH_OIIO
 #include "io/image_io.h"
 #endif
@@ -32,9 +36,14 @@ struct RenderOptions {
   bool progress = false;
   bool explain = false;
   bool generic = false;
+  bool no_cache = false;
   std::string form = "auto";
   uint32_t paths_in_flight = 0;
   size_t local_size = 0;
+  double launch_ms = 75;          // megakernel launch target, milliseconds; 0: one per pass
+  std::string checkpoint;         // --checkpoint FILE ("" = none)
+  double checkpoint_every_s = 60;
+  std::string resume;             // --resume FILE ("" = none)
 };
 
 // Where the outputs go: -o, else SCENE_STEM.exr in the current directory. Checked before any work.
@@ -69,8 +78,9 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
                                      "(--sampler jitter takes any count)");
 }
 
-void write_outputs(const std::string& path, const Film& film, const Scene& scene,
-                   const RenderReport& report, bool quiet) {
+// scene and report feed the EXR metadata only (unused in the OIIO-free build).
+void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] const Scene& scene,
+                   [[maybe_unused]] const RenderReport& report, bool quiet) {
   const std::string ext = std::filesystem::path(path).extension().string();
   std::string written = path;
   if (ext == ".pfm") {
@@ -78,7 +88,7 @@ void write_outputs(const std::string& path, const Film& film, const Scene& scene
     written += " (and its .var.pfm)";
   } else {
 #ifdef CLPT_WITH_OIIO
-    const ImageMetadata metadata = {
+    ImageMetadata metadata = {
         {"clpt:version", CLPT_VERSION},
         {"clpt:spp", std::to_string(report.spp)},
         {"clpt:seed", std::to_string(scene.settings.seed)},
@@ -91,6 +101,7 @@ void write_outputs(const std::string& path, const Film& film, const Scene& scene
         {"clpt:max_bounces", std::to_string(scene.settings.max_bounces)},
         {"clpt:dropped_samples", std::to_string(report.dropped)},
     };
+    if (report.interrupted) metadata["clpt:interrupted"] = "1";  // clpt:spp: the finished passes
     written += " and " + write_render_outputs(path, film, metadata);
 #endif
   }
@@ -99,13 +110,17 @@ void write_outputs(const std::string& path, const Film& film, const Scene& scene
 
 void print_summary(const Scene& scene, const RenderReport& r) {
   const double seconds = std::max(1e-9, r.render_seconds);
-  std::printf("rendered %s: %dx%d, %llu spp, %d passes, %s on %s\n", scene.file.c_str(),
+  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many.
+  const std::string launches =
+      r.form == ExecutionForm::Megakernel ? " in " + std::to_string(r.launches) + " launches" : "";
+  std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s on %s\n", scene.file.c_str(),
               scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
-              execution_form_name(r.form), r.device.c_str());
+              launches.c_str(), execution_form_name(r.form), r.device.c_str());
   std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
-              "kernel build %.2f s\n",
+              "kernel build %.2f s (%s)\n",
               r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
-              r.paths ? double(r.segments) / double(r.paths) : 0.0, r.build_seconds);
+              r.paths ? double(r.segments) / double(r.paths) : 0.0, r.build_seconds,
+              r.kernel_cache && r.kernel_cache->hits() > 0 ? "clpt cache hit" : "compiled");
   if (!r.stage_times.empty()) {
     std::printf("  device time per stage:");
     for (const StageTime& t : r.stage_times)
@@ -116,10 +131,56 @@ void print_summary(const Scene& scene, const RenderReport& r) {
     std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
 }
 
+// --resume: the checkpoint's film, checked against this render (exit 2 on any mismatch).
+// --checkpoint: a callback saving the film between passes. Both before any device work.
+void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, RenderRequest& request) {
+  if (!o.resume.empty()) {
+    request.resume = load_checkpoint(o.resume, scene);
+    const uint64_t done = request.resume->samples_per_pixel();
+    if (request.spp_given && done > uint64_t(scene.settings.spp))
+      throw Error(ExitCode::Usage, "--spp " + std::to_string(scene.settings.spp) + ": the checkpoint " +
+                                       o.resume + " already holds " + std::to_string(done) +
+                                       " samples per pixel");
+  }
+  if (o.checkpoint.empty()) return;
+  request.checkpoint_every_s = o.checkpoint_every_s;
+  request.checkpoint = [path = o.checkpoint, &scene](const Film& film) { save_checkpoint(path, scene, film); };
+}
+
+// After the passes: the final checkpoint, then the image of every finished pass. Returns the exit
+// code: Interrupted (130) whenever SIGINT/SIGTERM arrived, even if the last pass completed.
+int finish_outputs(const RenderOptions& o, const std::string& out, const Film& film, const Scene& scene,
+                   const RenderReport& report) {
+  const bool signalled = interrupt_flag().load();
+  const unsigned long long spp = film.samples_per_pixel();
+  if (spp == 0) {  // interrupted before the first pass finished (and nothing resumed)
+    std::fprintf(stderr, "clpt: interrupted before any pass finished; nothing written\n");
+    return static_cast<int>(ExitCode::Interrupted);
+  }
+  if (!o.checkpoint.empty()) {
+    save_checkpoint(o.checkpoint, scene, film);
+    if (!o.quiet) std::printf("wrote checkpoint %s (%llu spp)\n", o.checkpoint.c_str(), spp);
+  }
+  write_outputs(out, film, scene, report, o.quiet);
+  if (!signalled) return 0;
+  std::fprintf(stderr, "clpt: interrupted: wrote the %llu finished samples per pixel%s\n", spp,
+               report.interrupted ? "" : " (the render had completed)");
+  return static_cast<int>(ExitCode::Interrupted);
+}
+
+// --checkpoint FILE: its directory must exist (checked before any work, like -o).
+void check_checkpoint_path(const std::string& path) {
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw Error(ExitCode::Usage, "--checkpoint " + path + ": directory '" + dir.string() + "' does not exist");
+}
+
 int run(const RenderOptions& o) {
   const std::string out = output_path(o);
+  if (!o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
   Scene scene = load_scene_file(o.scene_path);
   apply_overrides(o, scene.settings);
+  check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
   if (o.explain)
     std::printf("%s", explain_kernel_options(o.generic ? generic_features() : features_for_scene(scene)).c_str());
 
@@ -132,13 +193,17 @@ int run(const RenderOptions& o) {
     request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
+  request.use_kernel_cache = !o.no_cache;
   request.show_progress = !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
+  request.launch_target_s = o.launch_ms / 1000;
   RenderReport report;
   request.scene = scene;
+  prepare_resume_and_checkpoints(o, scene, request);
+  install_interrupt_handlers();
+  request.interrupt = &interrupt_flag();
   const Film film = run_render(request, report);
   if (!o.quiet) print_summary(scene, report);
-  write_outputs(out, film, scene, report, o.quiet);
-  return 0;
+  return finish_outputs(o, out, film, scene, report);
 }
 
 }  // namespace
@@ -163,12 +228,23 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
   cmd->add_flag("--explain", o->explain, "Print how the kernel was specialised for the scene");
   cmd->add_flag("--generic", o->generic, "Compile every feature in, not only what the scene uses");
+  cmd->add_flag("--no-cache", o->no_cache, "Compile the kernel from source; neither read nor write "
+                                           "clpt's kernel binary cache (`clpt cache dir`)");
   cmd->add_option("--form", o->form, "Execution form: auto (the device's default), megakernel or wavefront")
       ->check(CLI::IsMember({"auto", "megakernel", "wavefront"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
       ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
   cmd->add_option("--local-size", o->local_size, "Work-group size (default: the driver's choice)")
       ->check(CLI::Range(size_t(1), size_t(4096)));
+  cmd->add_option("--launch-ms", o->launch_ms,
+                  "Megakernel: size each launch to take about this many ms (GPU watchdogs); 0: one per pass")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 60000.0));
+  cmd->add_option("--checkpoint", o->checkpoint, "Save the accumulated film to FILE periodically and at the end");
+  cmd->add_option("--checkpoint-every", o->checkpoint_every_s, "Seconds between checkpoints")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--resume", o->resume, "Continue the render saved in checkpoint FILE up to --spp");
   return [o] { return run(*o); };
 }
 

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   const auto run_render = clpt::add_render_command(app);
   const auto run_devices = clpt::add_devices_command(app);
   const auto run_bench = clpt::add_bench_command(app);
+  const auto run_cache = clpt::add_cache_command(app);
 #ifdef CLPT_WITH_OIIO
   const auto run_compare = clpt::add_compare_command(app);
 #endif
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return run_render();
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("bench")) return run_bench();
+    if (app.got_subcommand("cache")) return run_cache();
 #ifdef CLPT_WITH_OIIO
     if (app.got_subcommand("compare")) return run_compare();
 #endif

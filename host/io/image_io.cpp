@@ -7,15 +7,16 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "render/film_raw.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace clpt {
 namespace {
 
-// Writes `pixels` (channel-interleaved float) to a temporary file, then renames it into place.
-void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc format,
-                      const void* pixels) {
+// Writes `pixels` (channel-interleaved) to the temporary name for `path` and returns that name;
+// the caller renames it into place once every output of the render has been written.
+std::string write_temporary(const std::string& path, const OIIO::ImageSpec& spec,
+                            OIIO::TypeDesc format, const void* pixels) {
   const std::string tmp = temporary_path_for(path);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + OIIO::geterror());
@@ -24,7 +25,7 @@ void write_atomically(const std::string& path, const OIIO::ImageSpec& spec, OIIO
     std::remove(tmp.c_str());
     throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
   }
-  commit_temporary(tmp, path);
+  return tmp;
 }
 
 std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
@@ -61,8 +62,17 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
   const std::string png_path = preview_path_for(exr_path);
   OIIO::ImageSpec png_spec(w, h, 3, OIIO::TypeDesc::UINT8);
   const std::vector<unsigned char> preview = tone_map_preview(mean);
-  write_atomically(exr_path, spec, OIIO::TypeDesc::FLOAT, pixels.data());
-  write_atomically(png_path, png_spec, OIIO::TypeDesc::UINT8, preview.data());
+  // Both files are complete before either appears under its name.
+  const std::string exr_tmp = write_temporary(exr_path, spec, OIIO::TypeDesc::FLOAT, pixels.data());
+  std::string png_tmp;
+  try {
+    png_tmp = write_temporary(png_path, png_spec, OIIO::TypeDesc::UINT8, preview.data());
+  } catch (...) {
+    std::remove(exr_tmp.c_str());
+    throw;
+  }
+  commit_temporary(exr_tmp, exr_path);
+  commit_temporary(png_tmp, png_path);
   return png_path;
 }
 

@@ -1,6 +1,9 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace clpt {
 
@@ -24,8 +27,43 @@ void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, u
     dropped_samples_ += samples - static_cast<uint64_t>(p.valid_samples);
   }
   total_samples_ += uint64_t(samples) * pass.size();
-  // Whole-image passes advance the per-pixel count; partial launches are completed by the caller.
-  if (pixel_begin == 0 && pass.size() == pixel_count()) samples_per_pixel_ += samples;
+  track_pass_coverage(pass.size(), samples);
+}
+
+void Film::track_pass_coverage(size_t pixels, uint32_t samples) {
+  if (pending_pixels_ > 0 && samples != pending_samples_)
+    throw std::logic_error("Film::add_pass: a launch with " + std::to_string(samples) +
+                           " samples inside a pass of " + std::to_string(pending_samples_));
+  pending_samples_ = samples;
+  pending_pixels_ += pixels;
+  if (pending_pixels_ > pixel_count()) throw std::logic_error("Film::add_pass: pass covers too many pixels");
+  if (pending_pixels_ == pixel_count()) {
+    samples_per_pixel_ += samples;
+    pending_pixels_ = 0;
+  }
+}
+
+Film::Totals Film::totals() const {
+  return {samples_per_pixel_, total_samples_, total_segments_, dropped_samples_};
+}
+
+Film Film::restore(int width, int height, std::vector<double> sum, std::vector<double> sum_sq,
+                   std::vector<double> valid, const Totals& totals) {
+  Film film(0, 0);
+  const size_t pixels = size_t(width) * size_t(height);
+  if (width < 0 || height < 0 || sum.size() != pixels * 3 || sum_sq.size() != pixels * 3 ||
+      valid.size() != pixels)
+    throw std::invalid_argument("Film::restore: arrays do not match the image size");
+  film.width_ = width;
+  film.height_ = height;
+  film.sum_ = std::move(sum);
+  film.sum_sq_ = std::move(sum_sq);
+  film.valid_ = std::move(valid);
+  film.samples_per_pixel_ = totals.samples_per_pixel;
+  film.total_samples_ = totals.total_samples;
+  film.total_segments_ = totals.total_segments;
+  film.dropped_samples_ = totals.dropped_samples;
+  return film;
 }
 
 std::vector<float> Film::mean_rgb() const {

@@ -1,31 +1,14 @@
 #include "render/film_raw.h"
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace clpt {
-
-std::string temporary_path_for(const std::string& path) {
-  const std::filesystem::path p(path);
-  std::filesystem::path tmp = p.parent_path() / ("." + p.stem().string() + ".clpt-tmp-" +
-                                                 std::to_string(::getpid()) + p.extension().string());
-  return tmp.string();
-}
-
-void commit_temporary(const std::string& tmp, const std::string& path) {
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
-  }
-}
 
 void write_pfm_atomic(const std::string& path, int width, int height, const std::vector<float>& rgb) {
   const std::string tmp = temporary_path_for(path);

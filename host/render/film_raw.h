@@ -16,10 +16,4 @@ void write_pfm_atomic(const std::string& path, int width, int height, const std:
 // Writes PATH (mean) and PATH with ".pfm" replaced by ".var.pfm" (variance of the mean).
 void write_film_pfm(const std::string& path, const Film& film);
 
-// A temporary name in the same directory as `path`, keeping its extension (format detection).
-std::string temporary_path_for(const std::string& path);
-
-// Renames tmp to path, or removes tmp and throws Error(OutputError).
-void commit_temporary(const std::string& tmp, const std::string& path);
-
 }  // namespace clpt

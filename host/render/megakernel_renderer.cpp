@@ -26,7 +26,12 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
   kernel_.set_arg(0, spheres_);
   kernel_.set_arg(1, params);
   kernel_.set_arg(2, pass_);
-  ctx_.launch(kernel_, params.pixel_count, local_size_, "render_megakernel");
+  // A launch over part of the image (watchdog-sized, pass_loop.h) gets a fixed work-group size
+  // when none was asked for: those launches vary in size, and a driver left to choose picks (and
+  // PoCL compiles a kernel variant for, about a second each) a new work-group size for each.
+  const bool whole_image = params.pixel_begin == 0 && params.pixel_count == params.width * params.height;
+  const size_t local_size = local_size_ || whole_image ? local_size_ : kPartialLaunchLocalSize;
+  ctx_.launch(kernel_, params.pixel_count, local_size, "render_megakernel");
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), bytes);
   return out;

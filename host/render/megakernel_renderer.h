@@ -24,6 +24,9 @@ class MegakernelRenderer : public Renderer {
   // The pass buffer holds only per-pixel sums: any sample count fits.
   uint32_t max_samples_per_pass(uint32_t) const override { return UINT32_MAX; }
 
+  // Work-group size of launches over part of the image when the constructor got 0.
+  static constexpr size_t kPartialLaunchLocalSize = 64;
+
  private:
   DeviceContext& ctx_;
   ProgramHandle program_;

@@ -8,7 +8,9 @@
 #include "cl/cl_context.h"
 #include "cl/cl_device.h"
 #include "kernels/kernel_options.h"
+#include "render/limits.h"
 #include "render/megakernel_renderer.h"
+#include "render/pass_loop.h"
 #include "render/progress.h"
 #include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
@@ -18,6 +20,26 @@ namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+PassLoopOptions pass_loop_options(const RenderRequest& request, const DeviceInfo& device,
+                                  ExecutionForm form) {
+  const RenderSettings& settings = request.scene.settings;
+  PassLoopOptions o;
+  o.target_spp = request.spp_given ? uint64_t(settings.spp) : 0;
+  o.time_limit_s = request.time_limit_s;
+  o.granularity = settings.sampler == Sampler::Grid ? 16u : 1u;
+  // The wavefront's launches are bounded by its paths in flight; only the megakernel splits.
+  o.split_launches = form == ExecutionForm::Megakernel;
+  const uint32_t pixels = uint32_t(settings.width) * uint32_t(settings.height);
+  o.launches.target_s = request.launch_target_s;
+  o.launches.first_pixels = std::clamp(pixels / 64, 1u, 4096u);
+  o.launches.max_pixels = uint32_t(std::max<uint64_t>(1, launch_buffer_budget(device) / sizeof(GpuPixelPass)));
+  o.interrupt = request.interrupt;
+  o.checkpoint = request.checkpoint;
+  o.checkpoint_every_s = request.checkpoint_every_s;
+  o.show_progress = request.show_progress;
+  return o;
 }
 
 }  // namespace
@@ -71,15 +93,22 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   const Scene& scene = request.scene;
   const RenderSettings& settings = scene.settings;
 
+  check_scene_limits(scene);  // before any device work: fails fast and allocates nothing
+
   // 1. The device, and a context on it.
   const std::vector<DeviceInfo> devices = list_devices();
   DeviceContext ctx(select_device(devices, request.device));
+  if (request.use_kernel_cache) report.kernel_cache = ctx.use_default_kernel_cache();
   report.device = ctx.where();
 
   // 2. The scene as the kernels see it, and a kernel specialised for it.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
   const KernelFeatures features = request.generic_kernel ? generic_features() : features_for_scene(scene);
   report.form = request.form.value_or(default_form_for(ctx.device()));
+  check_device_memory(estimate_device_memory(report.form, uint64_t(settings.width) * settings.height,
+                                             device_scene.spheres.size(), request.paths_in_flight,
+                                             ctx.device()),
+                      ctx.device());
   const std::unique_ptr<Renderer> renderer = make_renderer(
       report.form, ctx, device_scene, features, request.paths_in_flight, request.local_size);
   report.build_options = renderer->build_options();
@@ -87,37 +116,16 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   if (auto* wavefront = dynamic_cast<WavefrontRenderer*>(renderer.get()))
     report.paths_in_flight = wavefront->paths_in_flight();
 
-  // 3. Passes until the sample count or the time budget is reached.
-  Film film(settings.width, settings.height);
-  GpuRenderParams params = make_params(scene, device_scene);
-  const uint64_t target = request.spp_given ? uint64_t(settings.spp) : 0;
-  const uint32_t granularity = settings.sampler == Sampler::Grid ? 16u : 1u;
-  const double pass_target_s = 0.5;
-  Progress progress(request.show_progress);
+  // 3. Passes until the sample count or the time budget is reached, or an interrupt.
+  Film film = request.resume ? *request.resume : Film(settings.width, settings.height);
+  const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
   const auto t0 = std::chrono::steady_clock::now();
-  double rate = 0;  // samples per pixel per second
-  while (target == 0 || film.samples_per_pixel() < target) {
-    const double elapsed = seconds_since(t0);
-    if (request.time_limit_s > 0 && report.passes > 0 && elapsed >= request.time_limit_s) break;
-    double pass_s = pass_target_s;
-    if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - elapsed));
-    params.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
-    params.samples_per_pass = std::min(
-        next_pass_samples(film.samples_per_pixel(), target, rate, pass_s, granularity),
-        std::max(granularity, renderer->max_samples_per_pass(params.pixel_count) / granularity * granularity));
-    const auto pass_start = std::chrono::steady_clock::now();
-    film.add_pass(renderer->render_pass(params), 0, params.samples_per_pass);
-    rate = params.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
-    ++report.passes;
-    progress.update(report.passes, film.samples_per_pixel(), target,
-                    double(film.total_samples()) / std::max(1e-9, seconds_since(t0)),
-                    seconds_since(t0), request.time_limit_s);
-  }
-  progress.finish();
+  run_passes(*renderer, make_params(scene, device_scene), film,
+             pass_loop_options(request, ctx.device(), report.form), report);
   report.render_seconds = seconds_since(t0);
   report.spp = film.samples_per_pixel();
-  report.paths = film.total_samples();
-  report.segments = film.total_segments();
+  report.paths = film.total_samples() - before.total_samples;
+  report.segments = film.total_segments() - before.total_segments;
   report.dropped = film.dropped_samples();
   report.stage_times = renderer->stage_times();
   return film;

@@ -2,6 +2,8 @@
 // kernel, run passes until the sample count or time budget is reached, accumulate in double.
 #pragma once
 
+#include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +13,8 @@
 #include "scene/scene.h"
 
 namespace clpt {
+
+class KernelCache;
 
 struct RenderRequest {
   Scene scene;               // settings already merged with command-line overrides
@@ -22,6 +26,16 @@ struct RenderRequest {
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
   std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
   uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
+  bool use_kernel_cache = true;       // clpt's kernel binary cache (--no-cache turns it off)
+  // Megakernel launches are sized to take about this long (watchdogs); <= 0: one per pass.
+  double launch_target_s = 0.075;
+  // Polled between passes; when it becomes true the running pass finishes and the render stops.
+  const std::atomic<bool>* interrupt = nullptr;
+  // A checkpoint to continue from (render/checkpoint.h): sampling resumes at its spp.
+  std::optional<Film> resume;
+  // Called between passes at most every checkpoint_every_s seconds (none when empty).
+  std::function<void(const Film&)> checkpoint;
+  double checkpoint_every_s = 60;
 };
 
 struct RenderReport {
@@ -37,6 +51,9 @@ struct RenderReport {
   ExecutionForm form = ExecutionForm::Megakernel;
   uint32_t paths_in_flight = 0;  // wavefront only
   std::vector<StageTime> stage_times;
+  std::shared_ptr<KernelCache> kernel_cache;  // the one used (null when off); hits() > 0: loaded
+  uint64_t launches = 0;     // kernel launches of the passes (megakernel: pixel-range launches)
+  bool interrupted = false;  // stopped early: `interrupt` was set before the target was reached
 };
 
 struct DeviceInfo;

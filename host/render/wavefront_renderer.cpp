@@ -5,6 +5,7 @@
 
 #include "kernels/kernel_source.h"
 #include "kernels/path_state.h"
+#include "render/limits.h"
 
 namespace clpt {
 uint32_t WavefrontRenderer::default_paths_in_flight(const DeviceInfo& device) {
@@ -51,7 +52,9 @@ cl_uint WavefrontRenderer::bind(Kernel& kernel, cl_uint first_index, const std::
 }
 
 uint32_t WavefrontRenderer::max_samples_per_pass(uint32_t pixel_count) const {
-  return static_cast<uint32_t>(std::max<size_t>(1, kMaxJobBytes / sizeof(cl_float4) / pixel_count));
+  const uint64_t budget = launch_buffer_budget(ctx_.device());
+  return static_cast<uint32_t>(std::clamp<uint64_t>(budget / sizeof(cl_float4) / std::max(pixel_count, 1u),
+                                                    1, UINT32_MAX));
 }
 
 void WavefrontRenderer::record(const char* label, EventHandle event) {

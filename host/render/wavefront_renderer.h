@@ -21,7 +21,8 @@ class WavefrontRenderer : public Renderer {
                     uint32_t paths_in_flight = 0, size_t local_size = 0);
 
   std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
-  // One result slot (16 bytes) per sample of the pass: bounded to kMaxJobBytes.
+  // One result slot (16 bytes) per sample of the pass: bounded to launch_buffer_budget()
+  // = min(kMaxJobBytes, the device's max allocation / 2), but at least one sample.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
   std::vector<StageTime> stage_times() const override;
 

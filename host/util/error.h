@@ -16,6 +16,7 @@ enum class ExitCode : int {
   BadScene = 3,     // scene file unreadable or invalid
   DeviceError = 4,  // no usable OpenCL device, build or launch failure
   OutputError = 5,  // an output file could not be written
+  Interrupted = 130,  // SIGINT/SIGTERM: stopped early (128 + SIGINT, the shell's convention)
 };
 
 class Error : public std::runtime_error {

@@ -1,0 +1,33 @@
+// Checkpoints: the accumulated film of a render, saved so that `clpt render --resume` can
+// continue it. A small binary format of clpt's own (no OpenImageIO, so the OIIO-free build has
+// it too), in the host's byte order (little-endian on every supported host), written atomically:
+//
+//   "CLPTCKPT" (8 bytes), u32 version (1), u32 width, u32 height, u64 spp done, u64 seed,
+//   scene hash (16 hex characters: Scene::file_hash), u32 sampler (0 jitter, 1 grid),
+//   u32 max_bounces, u64 total samples, u64 total segments, u64 dropped samples,
+//   then f64 sums (3 per pixel, RGB), f64 sums of squares (3 per pixel), f64 valid counts (1 per
+//   pixel), pixels row-major with row 0 at the top.
+//
+// A resumed render draws the samples an uninterrupted one would (the RNG is keyed by seed,
+// pixel and sample index), so only the float rounding of pass sums can differ.
+#pragma once
+
+#include <string>
+
+#include "render/film.h"
+#include "scene/scene.h"
+
+namespace clpt {
+
+constexpr uint32_t kCheckpointVersion = 1;
+
+// Writes `film` (between passes) and what identifies the render to `path` atomically.
+// Throws Error(OutputError) naming the file.
+void save_checkpoint(const std::string& path, const Scene& scene, const Film& film);
+
+// Reads a checkpoint and checks that it belongs to a render of `scene` with its settings
+// (scene hash, width, height, seed, sampler, max_bounces). Throws Error(Usage) naming the file
+// and the first mismatching field ("seed"), or saying why it cannot be read.
+Film load_checkpoint(const std::string& path, const Scene& scene);
+
+}  // namespace clpt

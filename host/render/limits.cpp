@@ -1,0 +1,121 @@
+#include "render/limits.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "cl/cl_device.h"
+#include "kernels/path_state.h"
+#include "render/render_session.h"
+#include "render/wavefront_renderer.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+// Bytes of one path slot: both persistent sets and the scratch set (kernels/path_state.h).
+constexpr uint64_t path_slot_bytes() {
+  uint64_t bytes = 0;
+#define CLPT_ADD_STATE(type, name, size, doc) bytes += 2 * (size);
+#define CLPT_ADD_SCRATCH(type, name, size, doc) bytes += (size);
+  CLPT_PATH_STATE_FIELDS(CLPT_ADD_STATE)
+  CLPT_PATH_SCRATCH_FIELDS(CLPT_ADD_SCRATCH)
+#undef CLPT_ADD_STATE
+#undef CLPT_ADD_SCRATCH
+  return bytes;
+}
+
+// Scene-file limits are scene errors (exit 3) naming the file; command-line ones usage errors.
+[[noreturn]] void fail_limit(bool from_command_line, const std::string& option, const Scene& scene,
+                             const std::string& key, const std::string& message) {
+  if (from_command_line) throw Error(ExitCode::Usage, option + ": " + message);
+  throw Error(ExitCode::BadScene, scene.file + ": " + key + ": " + message);
+}
+
+void add_buffer(MemoryEstimate& e, uint64_t bytes, const char* label) {
+  e.total_bytes += bytes;
+  if (bytes > e.largest_bytes) {
+    e.largest_bytes = bytes;
+    e.largest_label = label;
+  }
+}
+
+}  // namespace
+
+uint64_t launch_buffer_budget(const DeviceInfo& device) {
+  const uint64_t cap = WavefrontRenderer::kMaxJobBytes;
+  return device.max_alloc_bytes > 0 ? std::min<uint64_t>(cap, device.max_alloc_bytes / 2) : cap;
+}
+
+void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {
+  const RenderSettings& s = scene.settings;
+  const bool size_cli = origins.size_from_command_line;
+  const std::string size = std::to_string(s.width) + "x" + std::to_string(s.height);
+  if (s.width < 1 || s.height < 1 || s.width > kMaxImageSide || s.height > kMaxImageSide)
+    fail_limit(size_cli, "--width/--height", scene, "image",
+               "the image " + size + " is outside 1.." + std::to_string(kMaxImageSide) + " pixels per side");
+  const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+  if (pixels > kMaxImagePixels)
+    fail_limit(size_cli, "--width/--height", scene, "image",
+               "the image " + size + " has " + std::to_string(pixels) + " pixels; at most " +
+                   std::to_string(kMaxImagePixels) + " (2^26) are supported");
+  if (s.spp < 1 || uint64_t(s.spp) > kMaxSpp)
+    fail_limit(origins.spp_from_command_line, "--spp " + std::to_string(s.spp), scene, "render.spp",
+               "samples per pixel must be in [1, " + std::to_string(kMaxSpp) +
+                   "] (2^31: sample indices are 32-bit)");
+  if (s.max_bounces < 0 || s.max_bounces > kMaxBouncesLimit)
+    fail_limit(origins.bounces_from_command_line, "--max-bounces " + std::to_string(s.max_bounces),
+               scene, "render.max_bounces",
+               "max_bounces must be in [0, " + std::to_string(kMaxBouncesLimit) + "]");
+  if (scene.spheres.size() > kMaxSpheres)
+    throw Error(ExitCode::BadScene, scene.file + ": sphere: the scene has " +
+                                        std::to_string(scene.spheres.size()) + " spheres; at most " +
+                                        std::to_string(kMaxSpheres) + " are supported");
+}
+
+MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
+                                      uint32_t paths_in_flight, const DeviceInfo& device) {
+  MemoryEstimate e;
+  const uint64_t budget = launch_buffer_budget(device);
+  add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
+  if (form == ExecutionForm::Megakernel) {
+    // Launches cover at most budget / 32 pixels (pass_loop.cpp), so the buffer is that large.
+    const uint64_t launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
+    add_buffer(e, launch_pixels * sizeof(GpuPixelPass), "pass statistics");
+    return e;
+  }
+  const uint64_t paths = paths_in_flight ? paths_in_flight : WavefrontRenderer::default_paths_in_flight(device);
+  e.total_bytes += paths * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
+  add_buffer(e, pixels * sizeof(GpuPixelPass), "pass statistics");
+  const uint64_t samples = std::clamp<uint64_t>(budget / 16 / std::max<uint64_t>(pixels, 1), 1, kMaxSamplesPerPass);
+  add_buffer(e, pixels * samples * 16, "job results");
+  return e;
+}
+
+void check_device_memory(const MemoryEstimate& need, const DeviceInfo& device) {
+  const std::string hint = " (use a smaller image, fewer --paths-in-flight, or another --device)";
+  if (device.max_alloc_bytes > 0 && need.largest_bytes > device.max_alloc_bytes)
+    throw Error(ExitCode::DeviceError, "buffer '" + need.largest_label + "' would be " +
+                                           format_bytes(need.largest_bytes) + " but device '" +
+                                           device.name + "' allows at most " +
+                                           format_bytes(device.max_alloc_bytes) + " per allocation" + hint);
+  if (device.global_mem_bytes > 0 && need.total_bytes > device.global_mem_bytes)
+    throw Error(ExitCode::DeviceError, "render needs " + format_bytes(need.total_bytes) + " on device '" +
+                                           device.name + "' but it has " +
+                                           format_bytes(device.global_mem_bytes) + hint);
+}
+
+std::string format_bytes(uint64_t bytes) {
+  static const char* const units[] = {"KiB", "MiB", "GiB", "TiB"};
+  if (bytes < 1024) return std::to_string(bytes) + " B";
+  double value = double(bytes) / 1024;
+  int unit = 0;
+  while (value >= 1024 && unit < 3) {
+    value /= 1024;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f %s", value, units[unit]);
+  return text;
+}
+
+}  // namespace clpt

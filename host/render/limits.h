@@ -1,0 +1,62 @@
+// What clpt accepts, checked before anything is allocated: image size, samples per pixel, sphere
+// count and bounces (device-free, `check_scene_limits`), and the device memory the chosen
+// execution form would need (`check_device_memory`). Each failure is a clpt::Error whose message
+// names the value, the limit and, for memory, the device and both sizes.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace clpt {
+
+struct DeviceInfo;
+
+constexpr int kMaxImageSide = 16384;               // pixels, per axis
+constexpr uint64_t kMaxImagePixels = 1ull << 26;   // width * height
+constexpr uint64_t kMaxSpp = 1ull << 31;           // sample indices are 32-bit on the device
+constexpr size_t kMaxSpheres = 4096;
+constexpr int kMaxBouncesLimit = 1000;
+
+// Bytes one per-launch buffer may take on `device`: min(256 MiB, max allocation / 2). Bounds the
+// wavefront's job results (WavefrontRenderer::max_samples_per_pass) and the megakernel's pass
+// statistics per launch (so at most budget / 32 pixels per launch).
+uint64_t launch_buffer_budget(const DeviceInfo& device);
+
+// Which settings the command line set: a limit they break is a usage error (exit 2) naming the
+// option; one the scene file breaks is a scene error (exit 3) naming the file.
+struct SettingOrigins {
+  bool size_from_command_line = false;    // --width or --height given
+  bool spp_from_command_line = false;     // --spp given
+  bool bounces_from_command_line = false; // --max-bounces given
+};
+
+// Throws Error(Usage or BadScene) when the scene or its settings exceed a limit above.
+void check_scene_limits(const Scene& scene, const SettingOrigins& origins = {});
+
+// Device memory an execution form needs for a render, in bytes.
+struct MemoryEstimate {
+  uint64_t total_bytes = 0;
+  uint64_t largest_bytes = 0;  // the largest single buffer
+  std::string largest_label;   // its name, as the renderers label it ("job results")
+};
+
+// The buffers MegakernelRenderer / WavefrontRenderer allocate for `pixels` pixels and
+// `spheres` spheres: the sphere buffer (64 B each) and pass statistics (32 B per pixel of a
+// launch) for both; the wavefront adds paths_in_flight x 140 B of path state (two sets of 16
+// 4-byte fields, 3 scratch fields) and job results of 16 B per sample of a pass, with
+// samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
+MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
+                                      uint32_t paths_in_flight, const DeviceInfo& device);
+
+// Throws Error(DeviceError) naming the device and the sizes when `need` exceeds the device's
+// global memory or its largest allocation.
+void check_device_memory(const MemoryEstimate& need, const DeviceInfo& device);
+
+// "3.2 GiB", "512.0 MiB", "12.0 KiB", "100 B": one decimal, binary units.
+std::string format_bytes(uint64_t bytes);
+
+}  // namespace clpt

@@ -1,0 +1,111 @@
+#include "render/pass_loop.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "render/limits.h"
+#include "render/progress.h"
+
+namespace clpt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Throughput carried from launch to launch, and across passes (it is per pixel-sample).
+struct LaunchState {
+  double pixel_samples_per_s = 0;
+  uint32_t previous_pixels = 0;
+};
+
+// One pass of params.samples_per_pass samples over the whole image, in one launch or in
+// pixel-range launches; film.add_pass assembles the ranges.
+void run_one_pass(Renderer& renderer, GpuRenderParams params, Film& film,
+                  const PassLoopOptions& options, LaunchState& state, RenderReport& report) {
+  const uint32_t pixels = params.pixel_count;
+  const uint32_t samples = params.samples_per_pass;
+  if (!options.split_launches) {
+    film.add_pass(renderer.render_pass(params), 0, samples);
+    ++report.launches;
+    return;
+  }
+  for (uint32_t begin = 0; begin < pixels;) {
+    const uint32_t n = next_launch_pixels(options.launches, pixels - begin, samples,
+                                          state.pixel_samples_per_s, state.previous_pixels);
+    params.pixel_begin = begin;
+    params.pixel_count = n;
+    const Clock::time_point start = Clock::now();
+    std::vector<GpuPixelPass> pass = renderer.render_pass(params);
+    state.pixel_samples_per_s = double(n) * samples / std::max(1e-9, seconds_since(start));
+    state.previous_pixels = n;
+    film.add_pass(pass, begin, samples);
+    begin += n;
+    ++report.launches;
+  }
+}
+
+bool interrupted(const PassLoopOptions& options) {
+  return options.interrupt && options.interrupt->load(std::memory_order_relaxed);
+}
+
+}  // namespace
+
+uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
+                            double pixel_samples_per_s, uint32_t previous) {
+  if (remaining == 0) return 0;
+  const double max_pixels = std::max(1u, sizing.max_pixels);
+  double n = max_pixels;
+  if (sizing.target_s > 0) {
+    n = pixel_samples_per_s > 0 ? pixel_samples_per_s * sizing.target_s / std::max(1u, samples)
+                                : double(sizing.first_pixels);
+    if (previous > 0) n = std::min(n, double(previous) * kMaxLaunchGrowth);
+    n = std::clamp(n, 1.0, max_pixels);
+  }
+  const uint32_t pixels = static_cast<uint32_t>(n);
+  if (pixels >= remaining || (remaining - pixels < pixels / 4 && remaining <= max_pixels)) return remaining;
+  return pixels;
+}
+
+void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
+                const PassLoopOptions& options, RenderReport& report) {
+  const uint64_t stop_spp = options.target_spp ? options.target_spp : kMaxSpp;
+  const uint32_t g = options.granularity;
+  Progress progress(options.show_progress);
+  const Clock::time_point t0 = Clock::now();
+  Clock::time_point last_checkpoint = t0;
+  const uint64_t samples_before = film.total_samples();  // a resumed film already holds some
+  LaunchState launch;
+  GpuRenderParams pass = params;
+  double rate = 0;  // samples per pixel per second
+  while (film.samples_per_pixel() < stop_spp) {
+    if (interrupted(options)) {
+      report.interrupted = true;
+      break;
+    }
+    const double elapsed = seconds_since(t0);
+    if (options.time_limit_s > 0 && report.passes > 0 && elapsed >= options.time_limit_s) break;
+    double pass_s = options.pass_target_s;
+    if (options.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, options.time_limit_s - elapsed));
+    pass.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
+    pass.samples_per_pass = std::min(
+        next_pass_samples(film.samples_per_pixel(), stop_spp, rate, pass_s, g),
+        std::max(g, renderer.max_samples_per_pass(params.pixel_count) / g * g));
+    const Clock::time_point pass_start = Clock::now();
+    run_one_pass(renderer, pass, film, options, launch, report);
+    rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    ++report.passes;
+    progress.update(report.passes, film.samples_per_pixel(), options.target_spp,
+                    double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0)),
+                    seconds_since(t0), options.time_limit_s);
+    if (options.checkpoint && seconds_since(last_checkpoint) >= options.checkpoint_every_s) {
+      options.checkpoint(film);
+      last_checkpoint = Clock::now();
+    }
+  }
+  progress.finish();
+}
+
+}  // namespace clpt

@@ -1,0 +1,66 @@
+// Watchdog-sized launches and resumed renders give the image of a plain render (same device and
+// seed): pixel ranges do not change any pixel's sums, so a single pass split into many launches
+// is bit-identical; a resumed render may split passes differently, so it agrees to float rounding.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+
+#include "render_test_util.h"
+
+namespace clpt::test {
+namespace {
+
+RenderRequest small_request(ExecutionForm form, Sampler sampler, int64_t spp) {
+  RenderRequest request;
+  request.scene = load_book_scene("glass");
+  request.scene.settings.width = 64;
+  request.scene.settings.height = 48;
+  request.scene.settings.spp = spp;
+  request.scene.settings.seed = 5;
+  request.scene.settings.sampler = sampler;
+  const char* device = std::getenv("CLPT_TEST_DEVICE");
+  request.device = device ? device : "cpu";
+  request.form = form;
+  return request;
+}
+
+TEST(Launches, ManySmallLaunchesEqualOneLaunch) {
+  // Grid sampler, 16 spp: exactly one pass, so only the launch split differs.
+  RenderRequest one = small_request(ExecutionForm::Megakernel, Sampler::Grid, 16);
+  one.launch_target_s = 0;
+  RenderRequest many = one;
+  many.launch_target_s = 1e-3;  // --launch-ms 1: tens of pixels per launch on PoCL
+  RenderReport r1, r2;
+  const Film a = run_render(one, r1);
+  const Film b = run_render(many, r2);
+  ASSERT_EQ(r1.passes, 1);
+  ASSERT_EQ(r2.passes, 1);
+  EXPECT_EQ(r1.launches, 1u);
+  EXPECT_GT(r2.launches, 16u);
+  EXPECT_EQ(a.sums(), b.sums());
+  EXPECT_EQ(a.sums_of_squares(), b.sums_of_squares());
+  EXPECT_EQ(a.valid_counts(), b.valid_counts());
+  EXPECT_EQ(b.samples_per_pixel(), 16u);
+}
+
+TEST(Launches, ResumedRenderEqualsStraightRender) {
+  for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+    RenderRequest first = small_request(form, Sampler::Jitter, 12);
+    RenderReport r1, r2, r3;
+    RenderRequest second = small_request(form, Sampler::Jitter, 40);
+    second.resume = run_render(first, r1);
+    const Film resumed = run_render(second, r2);
+    const Film straight = run_render(small_request(form, Sampler::Jitter, 40), r3);
+    ASSERT_EQ(resumed.samples_per_pixel(), 40u);
+    EXPECT_EQ(resumed.total_samples(), straight.total_samples());
+    EXPECT_EQ(resumed.valid_counts(), straight.valid_counts());
+    const std::vector<double>& a = resumed.sums();
+    const std::vector<double>& b = straight.sums();
+    for (size_t i = 0; i < a.size(); ++i)
+      ASSERT_NEAR(a[i], b[i], 1e-5 * std::max(std::abs(b[i]), 1e-3)) << "value " << i;
+  }
+}
+
+}  // namespace
+}  // namespace clpt::test

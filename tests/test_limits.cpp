@@ -1,0 +1,177 @@
+// Limits, launch sizing, partial passes and checkpoints: host code only, no device needed.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "cl/cl_device.h"
+#include "render/checkpoint.h"
+#include "render/film.h"
+#include "render/limits.h"
+#include "render/pass_loop.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+// The message of the clpt::Error `f` throws, with its exit code.
+template <typename F>
+std::pair<ExitCode, std::string> error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return {e.code(), e.what()};
+  }
+  return {ExitCode::Ok, ""};
+}
+
+Scene small_scene() {
+  Scene s;
+  s.file = "scene.toml";
+  s.file_hash = "0123456789abcdef";
+  s.settings.width = 4;
+  s.settings.height = 3;
+  s.spheres.resize(2);
+  return s;
+}
+
+TEST(LaunchSizing, FirstLaunchIsSmallThenAimsAtTheTarget) {
+  LaunchSizing sizing{0.075, 4096, 1u << 20};
+  EXPECT_EQ(next_launch_pixels(sizing, 1000000, 16, 0, 0), 4096u);
+  // 1e8 pixel-samples/s * 0.075 s / 16 samples = 468750 pixels, but at most 4x the last launch.
+  EXPECT_EQ(next_launch_pixels(sizing, 1000000, 16, 1e8, 4096), 4u * 4096);
+  EXPECT_EQ(next_launch_pixels(sizing, 1000000, 16, 1e8, 400000), 468750u);
+  // A slow device: never below one pixel.
+  EXPECT_EQ(next_launch_pixels(sizing, 1000, 4096, 1.0, 10), 1u);
+}
+
+TEST(LaunchSizing, BoundsAndTails) {
+  LaunchSizing sizing{0.075, 4096, 100000};
+  EXPECT_EQ(next_launch_pixels(sizing, 0, 1, 1e9, 100), 0u);
+  EXPECT_EQ(next_launch_pixels(sizing, 1000000, 1, 1e12, 1000000), 100000u);  // memory bound
+  EXPECT_EQ(next_launch_pixels(sizing, 3000, 1, 0, 0), 3000u);                // all that is left
+  EXPECT_EQ(next_launch_pixels(sizing, 4096 + 1000, 1, 0, 0), 5096u);         // tail < 1/4 folded in
+  EXPECT_EQ(next_launch_pixels(sizing, 4096 + 2000, 1, 0, 0), 4096u);
+  LaunchSizing whole{0, 4096, 100000};  // target 0: one launch per pass, within the memory bound
+  EXPECT_EQ(next_launch_pixels(whole, 50000, 64, 1e3, 10), 50000u);
+  EXPECT_EQ(next_launch_pixels(whole, 250000, 64, 1e3, 10), 100000u);
+}
+
+TEST(Film, PartialLaunchesCountAsOnePass) {
+  Film film(3, 2);
+  GpuPixelPass p{};
+  p.valid_samples = 4;
+  film.add_pass({p, p}, 0, 4);
+  EXPECT_EQ(film.samples_per_pixel(), 0u);
+  EXPECT_FALSE(film.between_passes());
+  film.add_pass({p, p, p, p}, 2, 4);
+  EXPECT_EQ(film.samples_per_pixel(), 4u);
+  EXPECT_TRUE(film.between_passes());
+  EXPECT_EQ(film.total_samples(), 24u);
+  film.add_pass({p}, 0, 4);
+  EXPECT_THROW(film.add_pass({p}, 1, 8), std::logic_error);  // samples change inside a pass
+}
+
+TEST(Limits, SceneLimitsNameTheValueAndTheLimit) {
+  Scene s = small_scene();
+  EXPECT_EQ(error_of([&] { check_scene_limits(s); }).first, ExitCode::Ok);
+  s.settings.width = s.settings.height = 16384;
+  EXPECT_EQ(error_of([&] { check_scene_limits(s, {true, false, false}); }),
+            std::make_pair(ExitCode::Usage,
+                           std::string("--width/--height: the image 16384x16384 has 268435456 pixels; "
+                                       "at most 67108864 (2^26) are supported")));
+  EXPECT_EQ(error_of([&] { check_scene_limits(s); }).first, ExitCode::BadScene);
+  s = small_scene();
+  s.spheres.resize(5000);
+  EXPECT_EQ(error_of([&] { check_scene_limits(s); }),
+            std::make_pair(ExitCode::BadScene,
+                           std::string("scene.toml: sphere: the scene has 5000 spheres; at most 4096 are supported")));
+  s = small_scene();
+  s.settings.spp = int64_t(1) << 32;
+  EXPECT_EQ(error_of([&] { check_scene_limits(s, {false, true, false}); }).first, ExitCode::Usage);
+}
+
+DeviceInfo fake_device(uint64_t global, uint64_t max_alloc) {
+  DeviceInfo d;
+  d.name = "X";
+  d.is_gpu = true;
+  d.compute_units = 4;
+  d.global_mem_bytes = global;
+  d.max_alloc_bytes = max_alloc;
+  return d;
+}
+
+TEST(Limits, MemoryEstimateFollowsTheRenderers) {
+  const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
+  EXPECT_EQ(launch_buffer_budget(d), 256u << 20);
+  EXPECT_EQ(launch_buffer_budget(fake_device(1ull << 30, 256u << 20)), 128u << 20);
+  // Megakernel: spheres and one launch's pass statistics (at most budget / 32 pixels).
+  const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
+  EXPECT_EQ(mk.total_bytes, 10u * 64 + 1000u * 32);
+  EXPECT_EQ(estimate_device_memory(ExecutionForm::Megakernel, 1ull << 26, 1, 0, d).largest_bytes, 256u << 20);
+  // Wavefront: 65536 paths x 140 B, pass statistics, job results bounded by the budget.
+  const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1ull << 20, 1, 65536, d);
+  EXPECT_EQ(wf.total_bytes, 64u + 65536u * 140 + (32u << 20) + (256u << 20));
+  EXPECT_EQ(wf.largest_label, "job results");
+}
+
+TEST(Limits, MemoryErrorsNameTheDeviceAndSizes) {
+  MemoryEstimate need{3435973837ull, 1u << 20, "pass statistics"};  // 3.2 GiB in all
+  EXPECT_EQ(error_of([&] { check_device_memory(need, fake_device(2ull << 30, 1ull << 30)); }).second,
+            "render needs 3.2 GiB on device 'X' but it has 2.0 GiB (use a smaller image, fewer "
+            "--paths-in-flight, or another --device)");
+  need = {5ull << 30, 5ull << 30, "job results"};
+  const auto e = error_of([&] { check_device_memory(need, fake_device(8ull << 30, 2ull << 30)); });
+  EXPECT_EQ(e.first, ExitCode::DeviceError);
+  const std::string expected =
+      "buffer 'job results' would be 5.0 GiB but device 'X' allows at most 2.0 GiB per allocation";
+  EXPECT_EQ(e.second.substr(0, expected.size()), expected);
+  EXPECT_EQ(format_bytes(100), "100 B");
+  EXPECT_EQ(format_bytes(1536), "1.5 KiB");
+}
+
+class Checkpoint : public ::testing::Test {
+ protected:
+  std::string path_ = (std::filesystem::temp_directory_path() /
+                       ("clpt_test_checkpoint_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".ckpt"))
+                          .string();
+  void TearDown() override { std::remove(path_.c_str()); }
+};
+
+TEST_F(Checkpoint, RoundTripsTheFilmExactly) {
+  const Scene scene = small_scene();
+  Film film(4, 3);
+  GpuPixelPass p{};
+  p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 2, p.segments = 7;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  save_checkpoint(path_, scene, film);
+  const Film back = load_checkpoint(path_, scene);
+  EXPECT_EQ(back.samples_per_pixel(), 3u);
+  EXPECT_EQ(back.sums(), film.sums());
+  EXPECT_EQ(back.sums_of_squares(), film.sums_of_squares());
+  EXPECT_EQ(back.valid_counts(), film.valid_counts());
+  EXPECT_EQ(back.total_segments(), 84u);
+  EXPECT_EQ(back.dropped_samples(), 12u);
+}
+
+TEST_F(Checkpoint, MismatchesNameTheField) {
+  const Scene scene = small_scene();
+  save_checkpoint(path_, scene, Film(4, 3));
+  Scene other = scene;
+  other.settings.seed = 2;
+  EXPECT_NE(error_of([&] { load_checkpoint(path_, other); }).second.find("seed 1 does not match"), std::string::npos);
+  other = scene;
+  other.settings.max_bounces = 3;
+  EXPECT_NE(error_of([&] { load_checkpoint(path_, other); }).second.find("max_bounces"), std::string::npos);
+  other = scene;
+  other.file_hash = "fedcba9876543210";
+  EXPECT_NE(error_of([&] { load_checkpoint(path_, other); }).second.find("scene"), std::string::npos);
+  std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - 8);
+  const auto e = error_of([&] { load_checkpoint(path_, scene); });
+  EXPECT_EQ(e.first, ExitCode::Usage);
+  EXPECT_NE(e.second.find("truncated"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace clpt
