@@ -1,8 +1,8 @@
 /* film.cl: per-pixel statistics of one pass.
  *
- * A work-item owns one pixel for the whole pass: it sums its samples in float (a pass holds at
- * most a few thousand samples, so a float sum loses nothing that matters) and writes, not adds,
- * its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
+ * The paths of a launch leave their results per job; film_sum_jobs then gives each pixel to one
+ * work-item, which sums its samples in float (a pass holds at most a few thousand samples, so a
+ * float sum loses nothing that matters) and writes, not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
  * dropped here (bit test, survives fast maths) and show up as valid_samples < samples. */
 #ifndef CLPT_FILM_CL
 #define CLPT_FILM_CL
@@ -44,6 +44,31 @@ CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumula
   out->sum_sq[1] = acc->sum_sq.y;
   out->sum_sq[2] = acc->sum_sq.z;
   out->segments = acc->segments;
+}
+
+/* Job results, as both execution forms leave them: job j of a launch is sample j / pixel_count of
+ * pixel j % pixel_count; results[4 j + 0..2] hold its radiance, results[4 j + 3] the bits of its
+ * segment count. */
+CLPT_INLINE void job_result_store(__global float* results, uint job, Vec3 radiance, uint segments) {
+  results[4 * job + 0] = radiance.x;
+  results[4 * job + 1] = radiance.y;
+  results[4 * job + 2] = radiance.z;
+  results[4 * job + 3] = as_float(segments);
+}
+
+/* One work-item per pixel of the launch: its samples summed in sample order, so the sums do not
+ * depend on which form traced them or in what order. */
+__kernel void film_sum_jobs(const GpuRenderParams params, __global const float* results,
+                            __global GpuPixelPass* pass) {
+  const uint local_pixel = (uint)get_global_id(0);
+  if (local_pixel >= params.pixel_count) return;
+  PixelAccumulator acc = pixel_accumulator_new();
+  for (uint s = 0; s < params.samples_per_pass; ++s) {
+    const uint j = s * params.pixel_count + local_pixel;
+    pixel_accumulator_add(&acc, v3(results[4 * j], results[4 * j + 1], results[4 * j + 2]),
+                          as_uint(results[4 * j + 3]));
+  }
+  film_write_pass(&pass[local_pixel], &acc);
 }
 
 #endif

@@ -1,26 +1,23 @@
 /* megakernel.cl: the megakernel execution form.
  *
- * One work-item per pixel of the launch; it traces that pixel's samples of the pass one path at
- * a time, each path an iterative loop over the stages of path.cl, and writes the pixel's pass
- * statistics. Reads: the sphere buffer and GpuRenderParams. Writes: pass[pixel - pixel_begin]. */
+ * One work-item per path (job) of the launch: job j is sample sample_begin + j / pixel_count of
+ * pixel pixel_begin + j % pixel_count. It runs the stages of path.cl in a loop, one segment per
+ * iteration, until the path ends, and leaves its result for film_sum_jobs (film.cl). The loop's
+ * data-dependent length keeps PoCL from vectorising this form across work-items (an unrolled,
+ * masked loop measured no faster); GPUs run it as is. Reads: the sphere buffer and
+ * GpuRenderParams. Writes: results. */
 #include "types.h"
 #include "path.cl"
 #include "film.cl"
 
-__kernel void render_megakernel(__global const GpuSphere* spheres, const GpuRenderParams params,
-                                __global GpuPixelPass* pass) {
-  const uint local_pixel = (uint)get_global_id(0);
-  if (local_pixel >= params.pixel_count) return;
-  const uint pixel = params.pixel_begin + local_pixel;
-
-  PixelAccumulator acc = pixel_accumulator_new();
-  for (uint s = 0; s < params.samples_per_pass; ++s) {
-    PathState path = path_begin(&params, pixel, params.sample_begin + s);
-    while (path.alive) {
-      const Hit hit = path_intersect(&path, spheres, &params);
-      path_shade(&path, hit, spheres, &params);
-    }
-    pixel_accumulator_add(&acc, path.radiance, path.segments);
+__kernel void render_paths(__global const GpuSphere* spheres, const GpuRenderParams params,
+                           __global float* results) {
+  const uint job = (uint)get_global_id(0);
+  if (job >= params.pixel_count * params.samples_per_pass) return;
+  PathState path = path_begin(&params, params.pixel_begin + job % params.pixel_count,
+                              params.sample_begin + job / params.pixel_count);
+  while (path.alive) {
+    path_shade(&path, path_intersect(&path, spheres, &params), spheres, &params);
   }
-  film_write_pass(&pass[local_pixel], &acc);
+  job_result_store(results, job, path.radiance, path.segments);
 }

@@ -8,7 +8,7 @@
  *   wf_shade      active paths -> emission, next ray or end; an ended path leaves its radiance in
  *                 its job's result slot
  *   wf_compact    surviving paths copied densely into the other state set (atomic appends)
- *   wf_film       every pixel -> GpuPixelPass, summing its samples in sample order
+ *   film_sum_jobs every pixel -> GpuPixelPass, summing its samples in sample order (film.cl)
  * The physics is path.cl's: these kernels only load a PathState, call the same stage function
  * as the megakernel, and store it. Job j of a pass is sample (sample_begin + j / pixel_count) of
  * pixel (pixel_begin + j % pixel_count); its result depends on nothing else, so the image equals
@@ -84,8 +84,7 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderPar
   hit_sphere[i] = hit.sphere;
 }
 
-/* Ended paths write their job's result: radiance in results[4 job + 0..2], the segment count's
- * bits in results[4 job + 3]. */
+/* Ended paths write their job's result (job_result_store, film.cl). */
 __kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams params, uint count,
                        __global float* results CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
@@ -98,33 +97,29 @@ __kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams 
   const uint job_index = job[i];
   path_store(i, job_index, &p CLPT_STATE_ARGS);
   alive[i] = p.alive;
-  if (!p.alive) {
-    results[4 * job_index + 0] = p.radiance.x;
-    results[4 * job_index + 1] = p.radiance.y;
-    results[4 * job_index + 2] = p.radiance.z;
-    results[4 * job_index + 3] = as_float(p.segments);
-  }
+  if (!p.alive) job_result_store(results, job_index, p.radiance, p.segments);
 }
 
-/* Copies every surviving path to the next free slot of the other set; *survivors counts them. */
+/* Copies every surviving path to the next free slot of the other set; *survivors counts them.
+ * Slots are reserved per work-group (one global atomic per group, local atomics inside it): one
+ * global atomic per path made the cores fight over the counter's cache line (measured on PoCL:
+ * compaction took 4x as long as intersection and shading together). No work-item returns early,
+ * since every one must reach the barriers. */
 __kernel void wf_compact(uint count, __global volatile uint* survivors
                              CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
+  __local volatile uint group_count;
+  __local uint group_base;
   const uint from = (uint)get_global_id(0);
-  if (from >= count || !alive[from]) return;
-  const uint to = atomic_inc(survivors);
-  CLPT_PATH_STATE_FIELDS(CLPT_COPY_FIELD)
+  const bool survives = from < count && alive[from];
+  if (get_local_id(0) == 0) group_count = 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const uint rank = survives ? atomic_inc(&group_count) : 0u;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0) group_base = atomic_add(survivors, group_count);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (survives) {
+    const uint to = group_base + rank;
+    CLPT_PATH_STATE_FIELDS(CLPT_COPY_FIELD)
+  }
 }
 
-/* One work-item per pixel of the pass: its samples summed in sample order, as the megakernel does. */
-__kernel void wf_film(const GpuRenderParams params, __global const float* results,
-                      __global GpuPixelPass* pass) {
-  const uint local_pixel = (uint)get_global_id(0);
-  if (local_pixel >= params.pixel_count) return;
-  PixelAccumulator acc = pixel_accumulator_new();
-  for (uint s = 0; s < params.samples_per_pass; ++s) {
-    const uint j = s * params.pixel_count + local_pixel;
-    pixel_accumulator_add(&acc, v3(results[4 * j], results[4 * j + 1], results[4 * j + 2]),
-                          as_uint(results[4 * j + 3]));
-  }
-  film_write_pass(&pass[local_pixel], &acc);
-}

@@ -106,9 +106,10 @@ TEST(Limits, MemoryEstimateFollowsTheRenderers) {
   const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
   EXPECT_EQ(launch_buffer_budget(d), 256u << 20);
   EXPECT_EQ(launch_buffer_budget(fake_device(1ull << 30, 256u << 20)), 128u << 20);
-  // Megakernel: spheres and one launch's pass statistics (at most budget / 32 pixels).
+  // Megakernel: spheres, one launch's pass statistics (at most budget / 32 pixels) and its job
+  // results (16 B per sample: 1000 pixels x 4096 samples, the most a pass takes).
   const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
-  EXPECT_EQ(mk.total_bytes, 10u * 64 + 1000u * 32);
+  EXPECT_EQ(mk.total_bytes, 10u * 64 + 1000u * 32 + 1000u * 4096 * 16);
   EXPECT_EQ(estimate_device_memory(ExecutionForm::Megakernel, 1ull << 26, 1, 0, d).largest_bytes, 256u << 20);
   // Wavefront: 65536 paths x 140 B, pass statistics, job results bounded by the budget.
   const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1ull << 20, 1, 65536, d);

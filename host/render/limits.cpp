@@ -77,17 +77,19 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
   MemoryEstimate e;
   const uint64_t budget = launch_buffer_budget(device);
   add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
-  if (form == ExecutionForm::Megakernel) {
-    // Launches cover at most budget / 32 pixels (pass_loop.cpp), so the buffer is that large.
-    const uint64_t launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
-    add_buffer(e, launch_pixels * sizeof(GpuPixelPass), "pass statistics");
-    return e;
+  // Both forms keep 16 B per sample of a launch (job results) and 32 B per pixel of a launch (pass
+  // statistics). Wavefront launches cover the whole image; megakernel launches at most budget / 32
+  // pixels (pass_loop.cpp).
+  uint64_t launch_pixels = pixels;
+  if (form == ExecutionForm::Wavefront) {
+    const uint64_t paths = paths_in_flight ? paths_in_flight : WavefrontRenderer::default_paths_in_flight(device);
+    e.total_bytes += paths * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
+  } else {
+    launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
   }
-  const uint64_t paths = paths_in_flight ? paths_in_flight : WavefrontRenderer::default_paths_in_flight(device);
-  e.total_bytes += paths * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
-  add_buffer(e, pixels * sizeof(GpuPixelPass), "pass statistics");
+  add_buffer(e, launch_pixels * sizeof(GpuPixelPass), "pass statistics");
   const uint64_t samples = std::clamp<uint64_t>(budget / 16 / std::max<uint64_t>(pixels, 1), 1, kMaxSamplesPerPass);
-  add_buffer(e, pixels * samples * 16, "job results");
+  add_buffer(e, launch_pixels * samples * 16, "job results");
   return e;
 }
 

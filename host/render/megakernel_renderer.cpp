@@ -1,8 +1,10 @@
 #include "render/megakernel_renderer.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "kernels/kernel_source.h"
+#include "render/limits.h"
 
 namespace clpt {
 
@@ -13,25 +15,39 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
   const auto start = std::chrono::steady_clock::now();
   program_ = ctx.build_program(assemble_kernel_source("megakernel.cl"), build_options_, "megakernel.cl");
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  kernel_ = Kernel(program_.get(), "render_megakernel", ctx.where());
+  kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
+  film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
   const size_t sphere_bytes = scene.spheres.size() * sizeof(GpuSphere);
   spheres_ = Buffer(ctx, sphere_bytes, CL_MEM_READ_ONLY, "spheres");
   ctx.write(spheres_, scene.spheres.data(), sphere_bytes);
 }
 
+uint32_t MegakernelRenderer::max_samples_per_pass(uint32_t pixel_count) const {
+  const uint64_t budget = launch_buffer_budget(ctx_.device());
+  return static_cast<uint32_t>(std::clamp<uint64_t>(budget / sizeof(cl_float4) / std::max(pixel_count, 1u),
+                                                    1, UINT32_MAX));
+}
+
 std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams& params) {
+  const size_t jobs = size_t(params.pixel_count) * params.samples_per_pass;
+  if (results_.bytes() < jobs * sizeof(cl_float4))
+    results_ = Buffer(ctx_, jobs * sizeof(cl_float4), CL_MEM_READ_WRITE, "job results");
   const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
   kernel_.set_arg(0, spheres_);
   kernel_.set_arg(1, params);
-  kernel_.set_arg(2, pass_);
+  kernel_.set_arg(2, results_);
+  film_.set_arg(0, params);
+  film_.set_arg(1, results_);
+  film_.set_arg(2, pass_);
   // A launch over part of the image (watchdog-sized, pass_loop.h) gets a fixed work-group size
   // when none was asked for: those launches vary in size, and a driver left to choose picks (and
   // PoCL compiles a kernel variant for, about a second each) a new work-group size for each.
   const bool whole_image = params.pixel_begin == 0 && params.pixel_count == params.width * params.height;
   const size_t local_size = local_size_ || whole_image ? local_size_ : kPartialLaunchLocalSize;
-  ctx_.launch(kernel_, params.pixel_count, local_size, "render_megakernel");
+  ctx_.launch(kernel_, jobs, local_size, "render_paths");
+  ctx_.launch(film_, params.pixel_count, local_size, "film_sum_jobs");
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), bytes);
   return out;

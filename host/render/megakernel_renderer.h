@@ -1,5 +1,6 @@
-// The megakernel execution form: one kernel launch per pass, one work-item per pixel looping
-// over that pixel's samples and each path's bounces (kernels/megakernel.cl).
+// The megakernel execution form (kernels/megakernel.cl): one work-item per path, looping over
+// its segments, then film_sum_jobs sums each pixel's samples. Passes are split into launches over
+// pixel ranges (pass_loop.h) so that no launch trips a display watchdog.
 #pragma once
 
 #include <vector>
@@ -21,8 +22,8 @@ class MegakernelRenderer : public Renderer {
   // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
   std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
 
-  // The pass buffer holds only per-pixel sums: any sample count fits.
-  uint32_t max_samples_per_pass(uint32_t) const override { return UINT32_MAX; }
+  // One result slot (16 bytes) per sample of a launch, within launch_buffer_budget.
+  uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
 
   // Work-group size of launches over part of the image when the constructor got 0.
   static constexpr size_t kPartialLaunchLocalSize = 64;
@@ -30,9 +31,9 @@ class MegakernelRenderer : public Renderer {
  private:
   DeviceContext& ctx_;
   ProgramHandle program_;
-  Kernel kernel_;
+  Kernel kernel_, film_;
   Buffer spheres_;
-  Buffer pass_;
+  Buffer results_, pass_;
   size_t local_size_;
 };
 

@@ -29,7 +29,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where());
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());
   compact_ = Kernel(program_.get(), "wf_compact", ctx.where());
-  film_ = Kernel(program_.get(), "wf_film", ctx.where());
+  film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
   spheres_ = Buffer(ctx, scene.spheres.size() * sizeof(GpuSphere), CL_MEM_READ_ONLY, "spheres");
   ctx.write(spheres_, scene.spheres.data(), scene.spheres.size() * sizeof(GpuSphere));
@@ -143,7 +143,7 @@ std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& 
   film_.set_arg(0, params);
   film_.set_arg(1, results_);
   film_.set_arg(2, pass_);
-  record("film", ctx_.launch_profiled(film_, params.pixel_count, local_size_, "wf_film"));
+  record("film", ctx_.launch_profiled(film_, params.pixel_count, local_size_, "film_sum_jobs"));
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), pass_bytes);
   collect_times();
