@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Fuzzes the scene loader with libFuzzer (ASan + UBSan): builds build-fuzz with clang and
-# CLPT_FUZZ=ON, then runs tests/fuzz/fuzz_scene_loader on a working copy of the seed corpus
-# (scenes/ and tests/scenes/bad/) kept in build-fuzz, so nothing is written into the source tree.
-#   scripts/fuzz.sh [SECONDS]     fuzz for SECONDS (default 60)
-#   scripts/fuzz.sh --runs N      fuzz N inputs
+# Fuzzes the scene loader and the command-line option parser with libFuzzer (ASan + UBSan):
+# builds build-fuzz with clang and CLPT_FUZZ=ON, then runs tests/fuzz/fuzz_scene_loader (seeds:
+# scenes/ and tests/scenes/bad/) and tests/fuzz/fuzz_options (seeds: a few command lines) on
+# working corpora kept in build-fuzz, so nothing is written into the source tree.
+#   scripts/fuzz.sh [SECONDS]     fuzz each harness for SECONDS (default 60)
+#   scripts/fuzz.sh --runs N      fuzz N inputs each
 # Anything after "--" goes to libFuzzer, e.g. scripts/fuzz.sh 600 -- -fork=2
 # Exits non-zero if any input crashed, leaked, hit undefined behaviour or timed out; those inputs
 # are kept in build-fuzz/fuzz/findings/ (re-run one: build-fuzz/tests/fuzz/fuzz_scene_loader FILE).
@@ -19,41 +20,57 @@ case "${1:-}" in
   *) limit=(-max_total_time="$1"); shift ;;
 esac
 [[ "${1:-}" == "--" ]] && shift
+extra=("$@")
 
 clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
 # The harness needs neither OpenImageIO nor the test suite; only the fuzz target is built.
 cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCLPT_FUZZ=ON -DCLPT_BUILD_TESTS=OFF -DCLPT_WITH_OIIO=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_options
 
 work=$build/fuzz
-corpus=$work/corpus/scene_loader
 findings=$work/findings
-mkdir -p "$corpus" "$findings"
-# The seeds join the working corpus, which keeps what earlier runs learnt.
-for seed in "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml; do
-  [[ -e "$corpus/${seed##*/}" ]] || cp "$seed" "$corpus/"
-done
-stamp=$work/.started
-touch "$stamp"
-log=$work/last_run.log
+mkdir -p "$findings"
+failed=0
 
-clpt_log "fuzzing the scene loader (${limit[*]}); log: $log"
-status=0
-# -timeout: an input taking over 10 s is a finding (a scene must load in milliseconds).
-"$build/tests/fuzz/fuzz_scene_loader" "${limit[@]}" -dict="$CLPT_ROOT/tests/fuzz/scene.dict" \
-    -max_len=8192 -timeout=10 -print_final_stats=1 -artifact_prefix="$findings/" "$@" \
-    "$corpus" >"$log" 2>&1 || status=$?
+# fuzz_target NAME DICT SEED...: runs tests/fuzz/NAME on its working corpus in build-fuzz (the
+# seeds join it; it keeps what earlier runs learnt) and reports inputs tried and findings.
+fuzz_target() {
+  local name=$1 dict=$2
+  shift 2
+  local corpus=$work/corpus/$name log=$work/$name.log stamp=$work/.started-$name status=0
+  mkdir -p "$corpus"
+  for seed in "$@"; do
+    [[ -e "$corpus/${seed##*/}" ]] || cp "$seed" "$corpus/"
+  done
+  touch "$stamp"
+  clpt_log "fuzzing $name (${limit[*]}); log: $log"
+  # -timeout: an input taking over 10 s is a finding (parsing takes milliseconds).
+  "$build/tests/fuzz/$name" "${limit[@]}" -dict="$dict" -max_len=8192 -timeout=10 \
+      -print_final_stats=1 -artifact_prefix="$findings/$name-" "${extra[@]}" "$corpus" >"$log" 2>&1 || status=$?
+  local runs secs new=()
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s += $2} END {print s + 0}' || true)
+  secs=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | awk '{print $5}' | tail -n 1 || true)
+  while IFS= read -r -d '' f; do new+=("$f"); done < <(find "$findings" -type f -newer "$stamp" -print0)
+  echo "$name: ${runs} inputs tried${secs:+ in ${secs} s}, ${#new[@]} crash(es)/leak(s)/timeout(s)," \
+       "corpus $(find "$corpus" -type f | wc -l) files"
+  if [[ ${#new[@]} -gt 0 || $status -ne 0 ]]; then
+    grep -E 'ERROR: |runtime error|SUMMARY|fuzz_[a-z_]*: ' "$log" | head -n 20 >&2 || true
+    for f in "${new[@]}"; do echo "  finding: $f"; done
+    echo "$name: FAILED (exit $status); full log: $log" >&2
+    failed=1
+  fi
+}
 
-runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s += $2} END {print s + 0}' || true)
-secs=$(grep -o 'Done [0-9]* runs in [0-9]* second' "$log" | awk '{print $5}' | tail -n 1 || true)
-new=()
-while IFS= read -r -d '' f; do new+=("$f"); done < <(find "$findings" -type f -newer "$stamp" -print0)
-echo "fuzz_scene_loader: ${runs} inputs tried${secs:+ in ${secs} s}, ${#new[@]} crash(es)/leak(s)/timeout(s)," \
-     "corpus $(find "$corpus" -type f | wc -l) files"
-if [[ ${#new[@]} -gt 0 || $status -ne 0 ]]; then
-  grep -E 'ERROR: |runtime error|SUMMARY|fuzz_scene_loader: ' "$log" | head -n 20 >&2 || true
-  for f in "${new[@]}"; do echo "  finding: $f"; done
-  echo "fuzz_scene_loader: FAILED (exit $status); full log: $log" >&2
-  exit 1
-fi
+# Seeds for the option parser: a few real command lines, arguments separated by NUL bytes.
+option_seeds=$work/option-seeds
+mkdir -p "$option_seeds"
+printf 'render\0scenes/diffuse.toml\0--spp\00016\0-o\0out.exr' >"$option_seeds/render"
+printf 'render\0s.toml\0--form\0wavefront\0--paths-in-flight\0004096\0--launch-ms\00075' >"$option_seeds/forms"
+printf 'bench\0--forms\0megakernel,wavefront\0--spp\0004\0--json\0b.json' >"$option_seeds/bench"
+printf 'cache\0clear' >"$option_seeds/cache"
+
+fuzz_target fuzz_scene_loader "$CLPT_ROOT/tests/fuzz/scene.dict" \
+    "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml
+fuzz_target fuzz_options "$CLPT_ROOT/tests/fuzz/options.dict" "$option_seeds"/*
+exit $failed
