@@ -1,9 +1,7 @@
 #include "render/megakernel_renderer.h"
 
 #include <algorithm>
-#include <chrono>
 
-#include "kernels/kernel_source.h"
 #include "render/limits.h"
 
 namespace clpt {
@@ -11,10 +9,7 @@ namespace clpt {
 MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene,
                                        const KernelFeatures& features, size_t local_size)
     : ctx_(ctx), local_size_(local_size) {
-  build_options_ = kernel_build_options(features);
-  const auto start = std::chrono::steady_clock::now();
-  program_ = ctx.build_program(assemble_kernel_source("megakernel.cl"), build_options_, "megakernel.cl");
-  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  program_ = build(ctx, "megakernel.cl", features);
   kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 

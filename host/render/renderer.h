@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "cl/cl_context.h"
+#include "kernels/kernel_options.h"
 #include "kernels/types.h"
 
 namespace clpt {
@@ -37,6 +39,10 @@ class Renderer {
   const std::string& build_options() const { return build_options_; }
 
  protected:
+  // Builds the program of `entry_file` (e.g. "megakernel.cl") specialised for `features`,
+  // recording its build options and the build time (driver and clpt caches included).
+  ProgramHandle build(DeviceContext& ctx, const std::string& entry_file, const KernelFeatures& features);
+
   double build_seconds_ = 0;
   std::string build_options_;
 };

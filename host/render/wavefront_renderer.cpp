@@ -1,9 +1,7 @@
 #include "render/wavefront_renderer.h"
 
 #include <algorithm>
-#include <chrono>
 
-#include "kernels/kernel_source.h"
 #include "kernels/path_state.h"
 #include "render/limits.h"
 
@@ -21,10 +19,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
       // A fixed work-group size: the number of active paths changes every launch, and a driver left
       // to choose would pick (and PoCL would compile a kernel variant for) a new size each time.
       local_size_(local_size ? local_size : kDefaultLocalSize) {
-  build_options_ = kernel_build_options(features);
-  const auto start = std::chrono::steady_clock::now();
-  program_ = ctx.build_program(assemble_kernel_source("wavefront.cl"), build_options_, "wavefront.cl");
-  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  program_ = build(ctx, "wavefront.cl", features);
   generate_ = Kernel(program_.get(), "wf_generate", ctx.where());
   intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where());
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());
