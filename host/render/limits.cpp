@@ -46,6 +46,11 @@ uint64_t launch_buffer_budget(const DeviceInfo& device) {
   return device.max_alloc_bytes > 0 ? std::min<uint64_t>(cap, device.max_alloc_bytes / 2) : cap;
 }
 
+uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count) {
+  const uint64_t per_sample = 16 * uint64_t(std::max(pixel_count, 1u));
+  return static_cast<uint32_t>(std::clamp<uint64_t>(launch_buffer_budget(device) / per_sample, 1, UINT32_MAX));
+}
+
 void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {
   const RenderSettings& s = scene.settings;
   const bool size_cli = origins.size_from_command_line;
@@ -88,7 +93,8 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
     launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
   }
   add_buffer(e, launch_pixels * sizeof(GpuPixelPass), "pass statistics");
-  const uint64_t samples = std::clamp<uint64_t>(budget / 16 / std::max<uint64_t>(pixels, 1), 1, kMaxSamplesPerPass);
+  const uint64_t samples = std::min<uint64_t>(
+      max_samples_per_pass_for(device, uint32_t(std::min<uint64_t>(pixels, UINT32_MAX))), kMaxSamplesPerPass);
   add_buffer(e, launch_pixels * samples * 16, "job results");
   return e;
 }

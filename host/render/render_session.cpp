@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <memory>
 
 #include "cl/cl_context.h"
@@ -11,7 +10,6 @@
 #include "render/limits.h"
 #include "render/megakernel_renderer.h"
 #include "render/pass_loop.h"
-#include "render/progress.h"
 #include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
 

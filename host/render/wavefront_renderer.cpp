@@ -47,9 +47,7 @@ cl_uint WavefrontRenderer::bind(Kernel& kernel, cl_uint first_index, const std::
 }
 
 uint32_t WavefrontRenderer::max_samples_per_pass(uint32_t pixel_count) const {
-  const uint64_t budget = launch_buffer_budget(ctx_.device());
-  return static_cast<uint32_t>(std::clamp<uint64_t>(budget / sizeof(cl_float4) / std::max(pixel_count, 1u),
-                                                    1, UINT32_MAX));
+  return max_samples_per_pass_for(ctx_.device(), pixel_count);
 }
 
 void WavefrontRenderer::record(const char* label, EventHandle event) {
