@@ -4,8 +4,33 @@
 
 namespace clpt {
 
-KernelFeatures features_for_scene(const Scene& scene) {
+const char* precision_name(Precision precision) {
+  switch (precision) {
+    case Precision::Fast: return "fast";
+    case Precision::Double: return "double";
+    default: return "robust";
+  }
+}
+
+std::optional<Precision> parse_precision(const std::string& name) {
+  if (name == "fast") return Precision::Fast;
+  if (name == "robust") return Precision::Robust;
+  if (name == "double") return Precision::Double;
+  return std::nullopt;
+}
+
+const char* estimator_name(Estimator estimator) { return estimator == Estimator::Nee ? "nee" : "book"; }
+
+std::optional<Estimator> parse_estimator(const std::string& name) {
+  if (name == "book") return Estimator::Book;
+  if (name == "nee") return Estimator::Nee;
+  return std::nullopt;
+}
+
+KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
+  f.precision = precision;
+  f.estimator = parse_estimator(scene.settings.estimator).value_or(Estimator::Book);
   f.phong = false;
   f.glass = false;
   f.sphere_count = static_cast<int>(scene.spheres.size());
@@ -16,7 +41,11 @@ KernelFeatures features_for_scene(const Scene& scene) {
   return f;
 }
 
-KernelFeatures generic_features() { return KernelFeatures{}; }
+KernelFeatures generic_features(Precision precision) {
+  KernelFeatures f;
+  f.precision = precision;
+  return f;
+}
 
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;

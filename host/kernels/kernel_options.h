@@ -3,13 +3,32 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
 
 namespace clpt {
 
+// Arithmetic of the kernels (`--precision`); README "Precision presets".
+//   fast:   float, -cl-fast-relaxed-math, native maths, the centre-based intersection
+//   robust: float, IEEE maths, the accurate intersection of intersect.cl (default)
+//   double: fp64 arithmetic throughout the path (needs cl_khr_fp64)
+enum class Precision { Fast, Robust, Double };
+const char* precision_name(Precision precision);
+// "fast" | "robust" | "double"; nullopt otherwise.
+std::optional<Precision> parse_precision(const std::string& name);
+
+// Path estimator (`--estimator`, scene `render.estimator`).
+//   book: the book's: no next-event estimation, light only where a path hits an emitter
+//   nee:  next-event estimation at every non-specular vertex, MIS (power heuristic) with BSDF hits
+enum class Estimator { Book, Nee };
+const char* estimator_name(Estimator estimator);
+std::optional<Estimator> parse_estimator(const std::string& name);
+
 struct KernelFeatures {
+  Precision precision = Precision::Robust;
+  Estimator estimator = Estimator::Book;
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (loop unrolled); 0: read at run time
@@ -18,10 +37,10 @@ struct KernelFeatures {
 };
 
 // Only what the scene uses. (Lambertian and emitters are always present.)
-KernelFeatures features_for_scene(const Scene& scene);
+KernelFeatures features_for_scene(const Scene& scene, Precision precision = Precision::Robust);
 
 // Every feature compiled in: the generic kernel.
-KernelFeatures generic_features();
+KernelFeatures generic_features(Precision precision = Precision::Robust);
 
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);

@@ -101,7 +101,8 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   // 2. The scene as the kernels see it, and a kernel specialised for it.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
-  const KernelFeatures features = request.generic_kernel ? generic_features() : features_for_scene(scene);
+  const KernelFeatures features = request.generic_kernel ? generic_features(request.precision)
+                                                          : features_for_scene(scene, request.precision);
   report.form = request.form.value_or(default_form_for(ctx.device()));
   check_device_memory(estimate_device_memory(report.form, uint64_t(settings.width) * settings.height,
                                              device_scene.spheres.size(), request.paths_in_flight,

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "kernels/kernel_options.h"
 #include "render/film.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -22,6 +23,7 @@ struct RenderRequest {
   double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
   bool spp_given = true;     // false when only --time bounds the render
   bool show_progress = false;
+  Precision precision = Precision::Robust;  // --precision
   bool generic_kernel = false;  // compile every feature, not only what the scene needs
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
   std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)

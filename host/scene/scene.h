@@ -59,7 +59,8 @@ struct RenderSettings {
   uint64_t seed = 1;        // key of the counter-based RNG
   int max_bounces = 9;      // camera ray + at most max_bounces bounce rays
   Sampler sampler = Sampler::Jitter;
-  std::string estimator = "book";
+  std::string estimator = "book";  // "book" | "nee" (kernels/kernel_options.h: Estimator)
+  int rr_from = -1;                // Russian roulette from this bounce on; -1: none
 };
 
 struct Scene {
