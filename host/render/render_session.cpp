@@ -12,6 +12,7 @@
 #include "render/pass_loop.h"
 #include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
+#include "util/error.h"
 
 namespace clpt {
 namespace {
@@ -56,6 +57,10 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.ray_epsilon = ds.ray_epsilon;
   p.pixel_begin = 0;
   p.pixel_count = p.width * p.height;
+  p.estimator = parse_estimator(s.estimator).value_or(Estimator::Book) == Estimator::Nee ? CLPT_ESTIMATOR_NEE
+                                                                                        : CLPT_ESTIMATOR_BOOK;
+  p.rr_from = s.rr_from >= 0 ? static_cast<clpt_u32>(s.rr_from) : CLPT_RR_NEVER;
+  p.light_count = static_cast<clpt_u32>(ds.lights.size());
   return p;
 }
 
@@ -69,6 +74,13 @@ std::unique_ptr<Renderer> make_renderer(ExecutionForm form, DeviceContext& ctx,
 
 const char* execution_form_name(ExecutionForm form) {
   return form == ExecutionForm::Wavefront ? "wavefront" : "megakernel";
+}
+
+void check_precision_supported(Precision precision, const DeviceInfo& device) {
+  if (precision == Precision::Double && !device.fp64)
+    throw Error(ExitCode::DeviceError, "--precision double: " + device.label() +
+                                      " does not report cl_khr_fp64 (no double precision); use "
+                                      "--precision robust, or another device (`clpt devices`)");
 }
 
 // CPUs (PoCL): the wavefront, whose loop-free stage kernels PoCL vectorises across work-items
@@ -98,11 +110,14 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   DeviceContext ctx(select_device(devices, request.device));
   if (request.use_kernel_cache) report.kernel_cache = ctx.use_default_kernel_cache();
   report.device = ctx.where();
+  check_precision_supported(request.precision, ctx.device());
+  report.precision = request.precision;
 
   // 2. The scene as the kernels see it, and a kernel specialised for it.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
-  const KernelFeatures features = request.generic_kernel ? generic_features(request.precision)
-                                                          : features_for_scene(scene, request.precision);
+  KernelFeatures features = request.generic_kernel ? generic_features(request.precision)
+                                                    : features_for_scene(scene, request.precision);
+  features.intersection = request.intersection;
   report.form = request.form.value_or(default_form_for(ctx.device()));
   check_device_memory(estimate_device_memory(report.form, uint64_t(settings.width) * settings.height,
                                              device_scene.spheres.size(), request.paths_in_flight,
