@@ -150,7 +150,8 @@ CLPT_INLINE real mis_power(real a, real b) {
 CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* spheres,
                             __global const GpuLight* lights, const GpuRenderParams* params,
                             int index, Vec3 hit_point, Vec3 normal, uint* segments) {
-  if (params->light_count == 0u) return v3_splat((real)0);
+  /* With no light, light_sample reads the buffer's placeholder entry and returns pdf 0 (no early
+   * return: a branch here would stop PoCL's vectoriser). */
   __global const GpuSphere* sphere = &spheres[index];
   const Uniform4 u = rng_uniform4(rng_key_of(params), path->pixel, path->sample, CLPT_DIM_LIGHT + path->bounce);
   const LightSample ls = light_sample(lights, params->light_count, spheres, hit_point, u);
