@@ -15,7 +15,7 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 rows = doc["rows"]
 assert len(rows) == 2, rows
-fields = {"key", "scene", "form", "kernel", "device", "local_size", "paths_in_flight", "build_cold_s",
+fields = {"key", "scene", "form", "kernel", "precision", "estimator", "device", "local_size", "paths_in_flight", "build_cold_s",
           "build_cached_s", "paths_per_s", "segments_per_s", "stage_seconds"}
 for r in rows:
     missing = fields - r.keys()
