@@ -417,8 +417,7 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
       ->check(CLI::IsMember({"jitter", "grid"}));
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's; never the reference's)");
   cmd->add_option("--launch-ms", o->launch_ms,
-                  "Megakernel launch size target in ms, as for `clpt render` (0: one launch per pass; on PoCL "
-                  "each new launch size compiles anew, about 1 s, inside the measured time)")
+                  "Megakernel launch size target in ms, as for `clpt render --launch-ms` (0: one launch per pass)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 60000.0));
   cmd->add_flag("--no-warmup", o->no_warmup, "Skip the untimed render of each combination before its budgets");
