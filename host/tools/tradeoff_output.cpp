@@ -81,7 +81,7 @@ nlohmann::json run_json(const TradeoffRun& run) {
   };
 }
 
-// Range of every RMSE plotted and of the targets, widened a little: the dashed target lines must
+// Range of every RMSE plotted and of the targets, widened a little: the target lines must
 // lie inside the plot even when no curve reaches them.
 std::pair<double, double> rmse_range(const TradeoffResult& result) {
   double lo = HUGE_VAL, hi = 0;
@@ -90,6 +90,28 @@ std::pair<double, double> rmse_range(const TradeoffResult& result) {
   };
   for (const TradeoffRun& run : result.runs) take(run.error.rmse);
   for (const ErrorTarget& t : result.targets) take(t.rmse);
+  return {lo / 1.25, hi * 1.25};
+}
+
+// Explicit tics for a log axis over [lo, hi]: gnuplot's own are one per decade, which leaves a
+// plot of less than a decade with one labelled tic or none. 1-2-5 per decade, finer on short ranges.
+std::string log_tics(double lo, double hi) {
+  const std::vector<double> mantissas =
+      hi / lo >= 10 ? std::vector<double>{1, 2, 5} : std::vector<double>{1, 1.5, 2, 3, 5, 7};
+  std::string list;
+  for (int exponent = int(std::floor(std::log10(lo))); exponent <= int(std::ceil(std::log10(hi))); ++exponent)
+    for (double m : mantissas) {
+      const double v = m * std::pow(10.0, exponent);
+      if (v >= lo && v <= hi) list += (list.empty() ? "" : ", ") + printf_string("%g", v);
+    }
+  return "(" + list + ")";
+}
+
+// Range of the measured render times, widened like rmse_range.
+std::pair<double, double> time_range(const TradeoffResult& result) {
+  double lo = HUGE_VAL, hi = 0;
+  for (const TradeoffRun& run : result.runs)
+    if (std::isfinite(run.render_s) && run.render_s > 0) lo = std::min(lo, run.render_s), hi = std::max(hi, run.render_s);
   return {lo / 1.25, hi * 1.25};
 }
 
@@ -239,11 +261,13 @@ std::string gnuplot_script(const TradeoffResult& result, const std::string& png_
     return s.str();
   }
   const auto [lo, hi] = rmse_range(result);
-  s << printf_string("set yrange [%.9g:%.9g]\n", lo, hi);
+  const auto [t_lo, t_hi] = time_range(result);
+  s << printf_string("set yrange [%.9g:%.9g]\nset xrange [%.9g:%.9g]\n", lo, hi, t_lo, t_hi);
+  s << "set ytics " << log_tics(lo, hi) << "\nset xtics " << log_tics(t_lo, t_hi) << "\n";
   for (size_t t = 0; t < result.targets.size(); ++t) {
     const double e = result.targets[t].rmse;
     if (!(e > 0) || !std::isfinite(e)) continue;
-    s << printf_string("set arrow from graph 0, first %.9g to graph 1, first %.9g nohead dashtype 2 lc rgb 'gray50'\n",
+    s << printf_string("set arrow from graph 0, first %.9g to graph 1, first %.9g nohead lw 1 lc rgb 'gray50'\n",
                        e, e);
     s << printf_string("set label 'T%zu' at graph 0.01, first %.9g offset 0, 0.6\n", t + 1, e);
   }

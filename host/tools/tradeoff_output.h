@@ -44,7 +44,7 @@ std::string run_summary_line(const TradeoffRun& run);
 std::string time_to_error_table(const TradeoffResult& result);
 
 // A gnuplot script drawing log RMSE against log render time, one curve per combination, the
-// targets as dashed lines, into the PNG `png_path` (width x height pixels).
+// targets as grey horizontal lines, into the PNG `png_path` (width x height pixels).
 std::string gnuplot_script(const TradeoffResult& result, const std::string& png_path, int width = 900,
                            int height = 600);
 
