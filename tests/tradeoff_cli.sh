@@ -3,13 +3,17 @@
 # (megakernel, wavefront) at two tiny budgets plus a --target-from render write a well-formed CSV
 # (the exact header, one row per run, numeric fields that parse) and a PNG plot (PNG magic, the
 # expected size); -o .json writes valid JSON. Bad input (missing reference, size mismatch, a
-# reference without variance channels, bad --precision, unwritable -o, a bad --target-from, the
-# reference's seed, no gnuplot on PATH) exits 2 naming the option, before rendering, writing nothing.
+# reference without variance channels, bad --precision, unwritable or wrong-type -o, a bad
+# --target-from, the reference's seed, no gnuplot on PATH) exits 2 naming the option, before
+# rendering, writing nothing.
 #   tradeoff_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
 rm -rf "$work" && mkdir -p "$work/inputs" "$work/out" && cd "$work" || exit 1
 scene="$src/scenes/diffuse.toml"
+# PoCL otherwise compiles a work-group function for each new launch size of the megakernel (about
+# 1 s each on this machine), which only makes the test slower.
+export POCL_WORK_GROUP_SPECIALIZATION=0
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
@@ -89,22 +93,16 @@ expect() {
 }
 ok_args=("${size[@]}" --budgets 0.05 -o out2/runs.csv --plot out2/plot.png)
 expect 2 "--reference inputs/missing.exr: no such file" "$scene" --reference inputs/missing.exr "${ok_args[@]}"
-expect 2 "--reference is required" "$scene" "${ok_args[@]}"
 expect 2 "--reference inputs/ref.exr is 32x24 but the renders are 16x24" \
   "$scene" --reference inputs/ref.exr --width 16 --height 24 --budgets 0.05 -o out2/runs.csv
 expect 2 "no channel 'variance.R'" "$scene" --reference inputs/rgb.exr "${ok_args[@]}"
 expect 2 "--precision" "$scene" --reference inputs/ref.exr "${ok_args[@]}" --precision robust,quad
-expect 2 "--estimator" "$scene" --reference inputs/ref.exr "${ok_args[@]}" --estimator mlt
 expect 2 "-o out2/no/such/dir/runs.csv: directory" \
   "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.05 -o out2/no/such/dir/runs.csv
 expect 2 "-o out2/runs.txt: the output must be a .csv or a .json" \
   "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.05 -o out2/runs.txt
-expect 2 "--plot out2/plot.svg: the plot must be a .png" \
-  "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.05 --plot out2/plot.svg
 expect 2 "--target-from book@0" "$scene" --reference inputs/ref.exr "${ok_args[@]}" --target-from book@0
 expect 2 "--seed 1: the reference" "$scene" --reference inputs/ref.exr "${ok_args[@]}" --seed 1
-expect 2 "--budgets" "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.5,-1
-expect 2 "--min-time and --max-time go together" "$scene" --reference inputs/ref.exr "${size[@]}" --min-time 0.1
 # Without gnuplot, --plot fails before any rendering (PATH emptied for clpt alone).
 rm -rf out2 && mkdir out2
 err=$(PATH=/nonexistent "$clpt" tradeoff "$scene" --reference inputs/ref.exr "${ok_args[@]}" 2>&1 >/dev/null)
