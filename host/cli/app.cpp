@@ -14,6 +14,7 @@ ClptApp::ClptApp() {
   commands.emplace_back("cache", add_cache_command(app));
 #ifdef CLPT_WITH_OIIO
   commands.emplace_back("compare", add_compare_command(app));
+  commands.emplace_back("tradeoff", add_tradeoff_command(app));
 #endif
 }
 
