@@ -114,7 +114,7 @@ std::optional<uint64_t> metadata_number(const ImageMetadata& metadata, const std
   }
 }
 
-LoadedReference load_reference(const std::string& path, int width, int height) {
+LoadedImage read_reference(const std::string& path) {
   if (!std::filesystem::is_regular_file(path))
     throw Error(ExitCode::Usage, "--reference " + path + ": no such file");
   LoadedImage img;
@@ -132,6 +132,14 @@ LoadedReference load_reference(const std::string& path, int width, int height) {
                                        "'; tradeoff needs the mean (R, G, B) and its variance (variance.R, "
                                        "variance.G, variance.B) as `clpt render` writes them");
   }
+  return img;
+}
+
+// The reference as the error measures read it; its size must be the renders'.
+LoadedReference load_reference(const std::string& path, const LoadedImage& img, int width, int height) {
+  static const char* const kNames[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  int index[6];
+  for (int c = 0; c < 6; ++c) index[c] = img.channel(kNames[c]);
   if (img.width != width || img.height != height)
     throw Error(ExitCode::Usage, "--reference " + path + " is " + std::to_string(img.width) + "x" +
                                      std::to_string(img.height) + " but the renders are " + std::to_string(width) +
@@ -308,11 +316,17 @@ int run(const TradeoffOptions& o) {
   const std::vector<double> budgets = budgets_from(o);
   const std::optional<TargetFrom> target_from = target_from_option(o.target_from);
   Scene scene = load_scene_file(o.scene_path);
+  const LoadedImage reference_image = read_reference(o.reference_path);
+  if (!o.width && !o.height) {  // the renders take the reference's size unless told otherwise
+    scene.settings.width = reference_image.width;
+    scene.settings.height = reference_image.height;
+  }
   apply_overrides(o, scene);
   if (target_from && target_from->spp % sampler_granularity(scene) != 0)
     throw Error(ExitCode::Usage, "--target-from " + o.target_from + ": the scene's grid sampler needs a "
                                  "multiple of 16 samples per pixel");
-  const LoadedReference ref = load_reference(o.reference_path, scene.settings.width, scene.settings.height);
+  const LoadedReference ref =
+      load_reference(o.reference_path, reference_image, scene.settings.width, scene.settings.height);
   warn_about_mismatches(ref, scene);
   bool seed_moved = false;
   scene.settings.seed = choose_seed(o, scene, ref, seed_moved);
@@ -407,8 +421,8 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
   cmd->add_option("-o,--output", o->output, "Write every run to FILE.csv (header row) or FILE.json");
   cmd->add_option("--plot", o->plot, "Draw log RMSE against log time, one curve per combination, to FILE.png "
                                      "(needs gnuplot)");
-  cmd->add_option("--width", o->width, "Image width in pixels (the reference's)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--width", o->width, "Image width in pixels (default: the reference's)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", o->height, "Image height in pixels (default: the reference's)")->check(CLI::Range(1, 16384));
   cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--rr-from", o->rr_from, "Russian roulette from this bounce on (default: the scene's, none)")
