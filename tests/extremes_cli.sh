@@ -3,7 +3,8 @@
 #  - a transformed scene is written, loads and renders; bad options exit 2 and bad scenes 3,
 #    naming the option or file, and leave no file behind;
 #  - the book scene renders without a warning; a tiny sphere far away and a camera touching the
-#    floor each get one naming the sphere and its file line.
+#    floor each get one naming the sphere and its file line;
+#  - samples overflowing to Inf are dropped and counted in the render summary.
 #   extremes_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -92,5 +93,32 @@ if [[ "$warn" == *"sphere 'floor': the camera is 1e-06 from its surface"* ]]; th
 else fail "no or wrong warning for a camera touching the floor: $warn"; fi
 warn=$("$clpt" render "$work/speck.toml" -q --spp 1 --sampler jitter --width 8 --height 6 -o "$work/speck.exr" 2>&1)
 [[ -z "$warn" ]] || fail "--quiet must silence warnings: $warn"
+
+# Samples that overflow to Inf (radiance 3e38 scaled by 1.5^2 leaving glass) are dropped and the
+# summary says how many; the emission itself draws a warning.
+cat > "$work/overflow.toml" <<'TOML'
+[camera]
+position = [0.0, 0.0, 0.0]
+look_at = [0.0, 0.0, -1.0]
+
+[[sphere]]
+name = "glass_around_camera"
+center = [0.0, 0.0, 0.0]
+radius = 2.0
+material = { type = "glass", reflectance = [1.0, 1.0, 1.0], ior = 1.5 }
+
+[[sphere]]
+name = "overflowing_light"
+center = [0.0, 0.0, -10.0]
+radius = 5.0
+material = { type = "emitter", emission = [3.0e38, 3.0e38, 3.0e38] }
+TOML
+summary=$("$clpt" render "$work/overflow.toml" --spp 16 --sampler jitter --width 16 --height 12 \
+          -o "$work/overflow.exr" 2>"$work/overflow.err")
+if [[ "$summary" =~ dropped\ [1-9][0-9]*\ samples\ with\ NaN/Inf\ radiance ]]; then
+  echo "ok: the summary reports dropped samples"
+else fail "no 'dropped N samples' in the summary: $summary"; fi
+grep -q "sphere 'overflowing_light': emission 3e+38" "$work/overflow.err" && echo "ok: huge emission warns" ||
+  fail "no emission warning: $(cat "$work/overflow.err")"
 
 exit $((failures > 0))

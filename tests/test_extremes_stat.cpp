@@ -8,6 +8,7 @@
 
 #include "extreme_check.h"
 #include "render/render_session.h"
+#include "render_test_util.h"
 #include "scene/precision_range.h"
 
 namespace clpt::test {
@@ -68,6 +69,39 @@ TEST(ExtremesRobust, AlbedoOneFurnaceIsExactlyTheEmission) { expect_passes(albed
 TEST(FilmGuards, ZeroVarianceAccumulationOfTenMillionSamplesStaysExact) {
   static_assert(kMaxSamplesPerPass * 0.75 < (1 << 24), "per-pass sums of 0.75 must stay exact in float");
   expect_passes(long_accumulation(0.75, 10'000'000));
+}
+
+// The NaN/Inf guard at its worst case: a camera inside a glass ball (reflectance 1) looking out at
+// an emitter of radiance 3e38, finite and accepted by the loader: leaving the glass scales
+// radiance by 1.5^2, so those samples are +Inf in float. They must be dropped and counted, and
+// every pixel of the film must stay finite.
+TEST(FilmGuards, InfiniteSampleRadianceIsDroppedAndCounted) {
+  Scene scene;
+  scene.file = "overflowing emitter";
+  scene.camera.position = {0, 0, 0};
+  scene.camera.look_at = {0, 0, -1};
+  Sphere glass;
+  glass.name = "glass_around_camera";
+  glass.radius = 2;
+  glass.material.type = MaterialType::Glass;
+  glass.material.reflectance = {1, 1, 1};
+  glass.material.ior = 1.5;
+  Sphere light;
+  light.name = "overflowing_light";
+  light.center = {0, 0, -10};
+  light.radius = 5;
+  light.material.type = MaterialType::Emitter;
+  light.material.emission = {3e38, 3e38, 3e38};
+  scene.spheres = {glass, light};
+  scene.settings.max_bounces = 20;
+  EXPECT_FALSE(precision_range_warnings(scene, Precision::Robust).empty()) << "emission beyond the float range must warn";
+
+  const TestRender r = render_for_test(scene, 16, 12, 16, 7);
+  EXPECT_GT(r.report.dropped, 0u);
+  EXPECT_EQ(r.report.dropped, r.film.dropped_samples());
+  EXPECT_LT(r.report.dropped, r.film.total_samples()) << "paths that miss the light are finite";
+  for (float v : r.film.mean_rgb()) ASSERT_TRUE(std::isfinite(v));
+  for (float v : r.film.variance_rgb()) ASSERT_TRUE(std::isfinite(v));
 }
 
 }  // namespace
