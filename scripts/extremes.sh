@@ -8,8 +8,11 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
-out=${1:-$CLPT_ROOT/out/extremes.md}
-[[ $# -gt 0 ]] && shift
+out=$CLPT_ROOT/out/extremes.md
+if [[ $# -gt 0 && $1 != --* ]]; then
+  out=$1
+  shift
+fi
 mkdir -p "$(dirname "$out")"
 clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}"
 clpt_build -DCLPT_BUILD_TESTS=ON

@@ -35,12 +35,13 @@
 //  6. Not an arithmetic error but a limit of the same tests: hits closer than the ray epsilon
 //     (1e-5 of the camera-to-look-at distance, device_scene.h) are ignored, so a camera closer
 //     than that to a surface sees through it (measured: a camera 1e-6 of the view distance above
-//     the floor sees the floor's far side). Every hit a camera ray makes is at least the camera's
+//     a floor sees the enclosure below it). Every hit a camera ray makes is at least the camera's
 //     distance h from the surface away, so h >= kNearClipMargin x epsilon is safe.
 //  7. Emission is scale-free in floating point until the film's per-pass float sums of squared
-//     radiance overflow (L^2 x 4096 samples > 3.4e38: L > 2.9e17) or underflow into denormals
-//     (L^2 < 1.2e-38 after up to ten albedo factors of 0.1: L < ~1e-14); kEmissionSafe* keep a
-//     margin from both.
+//     radiance overflow: L^2 x 4096 samples > 3.4e38 at L = 2.9e17, less after a glass exit
+//     (x 1.5^2); kEmissionSafeMax = 1e17. At the other end the square of a directly seen emission
+//     becomes denormal below L = 1.1e-19 (zero under flush-to-zero), and each bounce multiplies by
+//     an albedo that may be 0.1; kEmissionSafeMin = 1e-15 leaves four such bounces of margin.
 #include "scene/precision_range.h"
 
 #include "scene/device_scene.h"
