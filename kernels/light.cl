@@ -21,7 +21,8 @@
 typedef struct LightSample {
   Vec3 direction; /* unit, from the shading point to the sampled point */
   real distance;  /* to the sampled point, world units */
-  real pdf;       /* solid-angle density of this direction, light pick included; 0: unusable */
+  real pdf;       /* solid-angle density of this direction, light pick included; 0: unusable (the
+                     point faces away from the shading point, or the density overflowed) */
   int sphere;     /* the emitter's index in the sphere buffer */
 } LightSample;
 
@@ -46,13 +47,22 @@ CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light
                                v3_load_global(light->cap_axis));
   /* p = c + r normal = s0 + r (normal - n0): the small difference keeps the point's precision. */
   const Vec3 p = v3_add_scaled(v3_load_global(sphere->surface_point),
-                               v3_sub(normal, v3_load_global(sphere->surface_normal)), sphere->radius);
+                               v3_sub(normal, v3_load_global(sphere->surface_normal)), (real)sphere->radius);
   const Vec3 to_point = v3_sub(p, x);
   LightSample s;
   s.distance = clpt_sqrt(v3_dot(to_point, to_point));
   s.direction = v3_scale(to_point, (real)1 / s.distance);
-  s.pdf = light_solid_angle_pdf(s.distance, v3_dot(normal, s.direction), light->cap_area, light_count);
-  s.pdf = is_finite_real(s.pdf) ? s.pdf : (real)0;
+  const real cos_light = v3_dot(normal, s.direction);
+  /* Only the side facing x can be seen from x: from outside the sphere the point must face back
+   * along the ray, from inside it must face along it. Outside means |c - x|^2 - r^2 > 0, formed as
+   * intersect.cl forms c' (no r^2 term). The shadow ray's distance cannot tell the sides apart:
+   * the chord between them is as short as 2r, or shorter near the silhouette. */
+  const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), x);
+  const real r = sphere->radius;
+  const bool outside = v3_dot(e, e) - (real)2 * r * v3_dot(v3_load_global(sphere->surface_normal), e) > (real)0;
+  const bool facing = outside ? cos_light < (real)0 : cos_light > (real)0;
+  s.pdf = light_solid_angle_pdf(s.distance, cos_light, light->cap_area, light_count);
+  s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
   s.sphere = (int)light->sphere;
   return s;
 }

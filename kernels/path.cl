@@ -161,8 +161,8 @@ CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* sph
   const Hit shadow = scene_intersect(spheres, params->sphere_count, hit_point, ls.direction,
                                      params->ray_epsilon, skip);
   *segments += 1u;
-  /* Visible: the first thing along the ray is the sampled point itself (not the emitter's near
-   * side, not anything else). */
+  /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
+   * is the emitter, at the sampled point's distance (nothing in between). */
   const bool visible = ls.pdf > (real)0 && shadow.sphere == ls.sphere &&
                        shadow.t >= ls.distance * (real)0.999f && !v3_is_zero(f_cos);
   const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
