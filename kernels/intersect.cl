@@ -30,6 +30,25 @@
 #include "types.h"
 #include "maths.cl"
 
+/* The sphere's geometry in `real`: the double preset adds the float remainders (types.h). */
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+CLPT_INLINE Vec3 sphere_surface_point(__global const GpuSphere* s) {
+  return v3((real)s->surface_point[0] + (real)s->surface_point_lo[0],
+            (real)s->surface_point[1] + (real)s->surface_point_lo[1],
+            (real)s->surface_point[2] + (real)s->surface_point_lo[2]);
+}
+CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) {
+  return v3((real)s->surface_normal[0] + (real)s->surface_normal_lo[0],
+            (real)s->surface_normal[1] + (real)s->surface_normal_lo[1],
+            (real)s->surface_normal[2] + (real)s->surface_normal_lo[2]);
+}
+CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return (real)s->radius + (real)s->radius_lo; }
+#else
+CLPT_INLINE Vec3 sphere_surface_point(__global const GpuSphere* s) { return v3_load_global(s->surface_point); }
+CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) { return v3_load_global(s->surface_normal); }
+CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return s->radius; }
+#endif
+
 typedef struct Hit {
   real t;     /* distance along the unit ray, CLPT_NO_HIT when nothing was hit */
   int sphere; /* index into the sphere buffer, -1 when nothing was hit */
@@ -48,8 +67,8 @@ typedef struct Hit {
 
 #if CLPT_INTERSECT == CLPT_INTERSECT_CENTRE
 CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t_min) {
-  const real r = sphere->radius;
-  const Vec3 centre = v3_add_scaled(v3_load_global(sphere->surface_point), v3_load_global(sphere->surface_normal), -r);
+  const real r = sphere_radius(sphere);
+  const Vec3 centre = v3_add_scaled(sphere_surface_point(sphere), sphere_surface_normal(sphere), -r);
   const Vec3 oc = v3_sub(centre, o);
   const real b = v3_dot(oc, d);
   const real disc = b * b - v3_dot(oc, oc) + r * r;
@@ -61,9 +80,9 @@ CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3
 }
 #else
 CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t_min) {
-  const Vec3 n0 = v3_load_global(sphere->surface_normal);
-  const real r = sphere->radius;
-  const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), o);
+  const Vec3 n0 = sphere_surface_normal(sphere);
+  const real r = sphere_radius(sphere);
+  const Vec3 e = v3_sub(sphere_surface_point(sphere), o);
   const real c_prime = v3_dot(e, e) - (real)2 * r * v3_dot(n0, e);
   const real b_prime = v3_dot(e, d) - r * v3_dot(n0, d);
 #if CLPT_INTERSECT == CLPT_INTERSECT_SURFACE
@@ -114,9 +133,9 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
 /* Outward unit normal at the hit point o + t d: (p - c) / r = n0 + (t d - e) / r, which keeps
  * full precision for huge r (it tends to n0). */
 CLPT_INLINE Vec3 sphere_normal_at(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t) {
-  const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), o);
-  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), (real)1 / (real)sphere->radius);
-  return v3_normalize(v3_add(v3_load_global(sphere->surface_normal), offset));
+  const Vec3 e = v3_sub(sphere_surface_point(sphere), o);
+  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), (real)1 / sphere_radius(sphere));
+  return v3_normalize(v3_add(sphere_surface_normal(sphere), offset));
 }
 
 #endif

@@ -13,6 +13,7 @@
 #include "types.h"
 #include "maths.cl"
 #include "rng.cl"
+#include "intersect.cl"
 
 /* RNG dimension of the light sample taken at bounce b: CLPT_DIM_LIGHT + b (rng.cl numbers the
  * camera 0 and scattering 1 + b). */
@@ -46,8 +47,8 @@ CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light
   const Vec3 normal = to_world(v3(sin_theta * circle.x, sin_theta * circle.y, (real)1 - v),
                                v3_load_global(light->cap_axis));
   /* p = c + r normal = s0 + r (normal - n0): the small difference keeps the point's precision. */
-  const Vec3 p = v3_add_scaled(v3_load_global(sphere->surface_point),
-                               v3_sub(normal, v3_load_global(sphere->surface_normal)), (real)sphere->radius);
+  const Vec3 p = v3_add_scaled(sphere_surface_point(sphere), v3_sub(normal, sphere_surface_normal(sphere)),
+                               sphere_radius(sphere));
   const Vec3 to_point = v3_sub(p, x);
   LightSample s;
   s.distance = clpt_sqrt(v3_dot(to_point, to_point));
@@ -57,9 +58,9 @@ CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light
    * along the ray, from inside it must face along it. Outside means |c - x|^2 - r^2 > 0, formed as
    * intersect.cl forms c' (no r^2 term). The shadow ray's distance cannot tell the sides apart:
    * the chord between them is as short as 2r, or shorter near the silhouette. */
-  const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), x);
-  const real r = sphere->radius;
-  const bool outside = v3_dot(e, e) - (real)2 * r * v3_dot(v3_load_global(sphere->surface_normal), e) > (real)0;
+  const Vec3 e = v3_sub(sphere_surface_point(sphere), x);
+  const real r = sphere_radius(sphere);
+  const bool outside = v3_dot(e, e) - (real)2 * r * v3_dot(sphere_surface_normal(sphere), e) > (real)0;
   const bool facing = outside ? cos_light < (real)0 : cos_light > (real)0;
   s.pdf = light_solid_angle_pdf(s.distance, cos_light, light->cap_area, light_count);
   s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;

@@ -27,10 +27,14 @@ typedef uint32_t clpt_u32;
 #define CLPT_SAMPLER_JITTER 0u /* 4x4 strata, uniform inside each, strata order shuffled per 16 */
 #define CLPT_SAMPLER_GRID 1u   /* the book's 4x4 fixed sub-pixel centres */
 
-/* One sphere and its material: 64 bytes.
+/* One sphere and its material: 96 bytes.
  * The sphere is stored as a point s0 on its surface near the scene, the outward unit normal n0
  * there, and the radius, so that the centre is s0 - radius * n0. The intersection then never
- * forms a term of size radius^2 (numerics.md: radius-1e5 walls keep their precision). */
+ * forms a term of size radius^2 (numerics.md: radius-1e5 walls keep their precision).
+ * Each geometric value is a float plus the float of its remainder (*_lo: value - (double)float):
+ * float kernels read the first, the double preset adds both and so sees the host's double values
+ * to about 48 bits (a sphere 1e6 radii from the camera rounded to float alone moved by 6% of its
+ * radius, and the double preset rendered it as wrongly as robust). */
 typedef struct GpuSphere {
   float surface_point[3];  /* s0, camera-relative, world units */
   float radius;            /* world units, > 0 */
@@ -40,6 +44,10 @@ typedef struct GpuSphere {
   float phong_exponent;    /* Phong lobe exponent n (Phong only) */
   float emission[3];       /* emitted radiance per channel (emitters only) */
   float ior;               /* index of refraction inside (glass only); outside is 1 */
+  float surface_point_lo[3];  /* remainders of surface_point, radius, surface_normal */
+  float radius_lo;
+  float surface_normal_lo[3];
+  float pad;
 } GpuSphere;
 
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
@@ -115,6 +123,9 @@ typedef struct GpuPixelPass {
   X(GpuSphere, phong_exponent)                                                                    \
   X(GpuSphere, emission)                                                                          \
   X(GpuSphere, ior)                                                                               \
+  X(GpuSphere, surface_point_lo)                                                                  \
+  X(GpuSphere, radius_lo)                                                                         \
+  X(GpuSphere, surface_normal_lo)                                                                 \
   X(GpuCamera, sensor_center)                                                                     \
   X(GpuCamera, sensor_right)                                                                      \
   X(GpuCamera, sensor_up)                                                                         \

@@ -17,6 +17,15 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
 void store(float out[3], const Vec3& v) {
   for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
 }
+// v as a float and the float of what that float left out (types.h: the *_lo fields).
+float store_split(double v, float& lo) {
+  const float hi = static_cast<float>(v);
+  lo = static_cast<float>(v - double(hi));
+  return hi;
+}
+void store_split(float hi[3], float lo[3], const Vec3& v) {
+  for (int i = 0; i < 3; ++i) hi[i] = store_split(v[i], lo[i]);
+}
 
 GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_position) {
   GpuSphere g{};
@@ -24,9 +33,9 @@ GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_positio
   // A sphere centred on the anchor has no closest point: any direction will do.
   const Vec3 n0 = length(towards_anchor) > 0 ? normalize(towards_anchor) : Vec3{0, 1, 0};
   const Vec3 s0 = add(s.center, scale(n0, s.radius));
-  store(g.surface_point, sub(s0, camera_position));
-  store(g.surface_normal, n0);
-  g.radius = static_cast<float>(s.radius);
+  store_split(g.surface_point, g.surface_point_lo, sub(s0, camera_position));
+  store_split(g.surface_normal, g.surface_normal_lo, n0);
+  g.radius = store_split(s.radius, g.radius_lo);
   g.material = static_cast<clpt_u32>(s.material.type);
   store(g.reflectance, s.material.reflectance);
   g.phong_exponent = static_cast<float>(s.material.phong_exponent);
