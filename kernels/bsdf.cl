@@ -15,21 +15,21 @@
 #include "maths.cl"
 
 /* Cosine-weighted direction around unit n; pdf cos(theta) / pi. */
-CLPT_INLINE Vec3 sample_cosine_hemisphere(Vec3 n, float u0, float u1) {
+CLPT_INLINE Vec3 sample_cosine_hemisphere(Vec3 n, real u0, real u1) {
   const Float2 circle = unit_circle(u0);
-  const float radius = sqrt(u1);
-  return to_world(v3(radius * circle.x, radius * circle.y, sqrt(fmax(0.0f, 1.0f - u1))), n);
+  const real radius = clpt_sqrt(u1);
+  return to_world(v3(radius * circle.x, radius * circle.y, clpt_sqrt(fmax((real)0, (real)1 - u1))), n);
 }
 
 /* Direction around unit axis with pdf (exponent+1)/(2 pi) cos^exponent(alpha). */
-CLPT_INLINE Vec3 sample_phong_lobe(Vec3 axis, float exponent, float u0, float u1) {
+CLPT_INLINE Vec3 sample_phong_lobe(Vec3 axis, real exponent, real u0, real u1) {
   const Float2 circle = unit_circle(u0);
-  const float cos_alpha = pow_unit(u1, 1.0f / (exponent + 1.0f));
-  const float sin_alpha = sqrt(fmax(0.0f, 1.0f - cos_alpha * cos_alpha));
+  const real cos_alpha = pow_unit(u1, (real)1 / (exponent + (real)1));
+  const real sin_alpha = clpt_sqrt(fmax((real)0, (real)1 - cos_alpha * cos_alpha));
   return to_world(v3(sin_alpha * circle.x, sin_alpha * circle.y, cos_alpha), axis);
 }
 
-CLPT_INLINE Vec3 reflect_about(Vec3 d, Vec3 n) { return v3_add_scaled(d, n, -2.0f * v3_dot(n, d)); }
+CLPT_INLINE Vec3 reflect_about(Vec3 d, Vec3 n) { return v3_add_scaled(d, n, (real)-2 * v3_dot(n, d)); }
 
 CLPT_INLINE Vec3 bsdf_lambertian_sample(Vec3 d, Vec3 n, Vec3 rho, Uniform4 u, Vec3* weight) {
   const Vec3 facing = v3_select(v3_dot(n, d) < 0.0f, n, v3_neg(n));
@@ -37,31 +37,48 @@ CLPT_INLINE Vec3 bsdf_lambertian_sample(Vec3 d, Vec3 n, Vec3 rho, Uniform4 u, Ve
   return sample_cosine_hemisphere(facing, u.u0, u.u1);
 }
 
-CLPT_INLINE Vec3 bsdf_phong_sample(Vec3 d, Vec3 n, Vec3 rho, float exponent, Uniform4 u, Vec3* weight) {
+CLPT_INLINE Vec3 bsdf_phong_sample(Vec3 d, Vec3 n, Vec3 rho, real exponent, Uniform4 u, Vec3* weight) {
   const Vec3 out = sample_phong_lobe(reflect_about(d, n), exponent, u.u0, u.u1);
-  const float cos_out = v3_dot(n, out);
-  *weight = v3_scale(rho, cos_out > 0.0f ? (exponent + 2.0f) / (exponent + 1.0f) * cos_out : 0.0f);
+  const real cos_out = v3_dot(n, out);
+  *weight = v3_scale(rho, cos_out > (real)0 ? (exponent + (real)2) / (exponent + (real)1) * cos_out : (real)0);
   return out;
+}
+
+/* Evaluation for next-event estimation: f cos(theta_wi) towards wi (unit, leaving the surface)
+ * and, in *pdf, the solid-angle density with which the sampler above would have chosen wi. */
+CLPT_INLINE Vec3 bsdf_lambertian_eval(Vec3 d, Vec3 n, Vec3 rho, Vec3 wi, real* pdf) {
+  const Vec3 facing = v3_select(v3_dot(n, d) < (real)0, n, v3_neg(n));
+  const real cos_wi = v3_dot(facing, wi);
+  *pdf = cos_wi > (real)0 ? cos_wi / CLPT_PI : (real)0;
+  return v3_scale(rho, *pdf); /* rho / pi * cos */
+}
+
+CLPT_INLINE Vec3 bsdf_phong_eval(Vec3 d, Vec3 n, Vec3 rho, real exponent, Vec3 wi, real* pdf) {
+  const real cos_alpha = v3_dot(reflect_about(d, n), wi);
+  const real lobe = cos_alpha > (real)0 ? pow_unit(cos_alpha, exponent) / ((real)2 * CLPT_PI) : (real)0;
+  const real cos_out = v3_dot(n, wi);
+  *pdf = (exponent + (real)1) * lobe;
+  return v3_scale(rho, cos_out > (real)0 ? (exponent + (real)2) * lobe * cos_out : (real)0);
 }
 
 /* Unpolarised Fresnel reflectance for relative index eta = n_from / n_to, cosines of the
  * incident and transmitted angles (both >= 0). */
-CLPT_INLINE float fresnel_dielectric(float eta, float cos_i, float cos_t) {
-  const float r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-  const float r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-  return 0.5f * (r_s * r_s + r_p * r_p);
+CLPT_INLINE real fresnel_dielectric(real eta, real cos_i, real cos_t) {
+  const real r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  const real r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  return (real)0.5f * (r_s * r_s + r_p * r_p);
 }
 
-CLPT_INLINE Vec3 bsdf_glass_sample(Vec3 d, Vec3 n, Vec3 rho, float ior, Uniform4 u, Vec3* weight) {
-  const bool entering = v3_dot(n, d) < 0.0f;
+CLPT_INLINE Vec3 bsdf_glass_sample(Vec3 d, Vec3 n, Vec3 rho, real ior, Uniform4 u, Vec3* weight) {
+  const bool entering = v3_dot(n, d) < (real)0;
   const Vec3 facing = v3_select(entering, n, v3_neg(n));
-  const float eta = entering ? 1.0f / ior : ior; /* n_from / n_to */
-  const float cos_i = -v3_dot(d, facing);
-  const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-  const float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+  const real eta = entering ? (real)1 / ior : ior; /* n_from / n_to */
+  const real cos_i = -v3_dot(d, facing);
+  const real sin2_t = eta * eta * ((real)1 - cos_i * cos_i);
+  const real cos_t = clpt_sqrt(fmax((real)0, (real)1 - sin2_t));
   /* Total internal reflection, or reflection with probability Fr. */
-  const bool reflect = sin2_t >= 1.0f || u.u2 < fresnel_dielectric(eta, cos_i, cos_t);
-  *weight = v3_scale(rho, reflect ? 1.0f : eta * eta);
+  const bool reflect = sin2_t >= (real)1 || u.u2 < fresnel_dielectric(eta, cos_i, cos_t);
+  *weight = v3_scale(rho, reflect ? (real)1 : eta * eta);
   const Vec3 refracted = v3_normalize(v3_add_scaled(v3_scale(d, eta), facing, eta * cos_i - cos_t));
   return v3_select(reflect, reflect_about(d, facing), refracted);
 }

@@ -21,16 +21,16 @@ CLPT_INLINE Float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sa
   const Uniform4 u = rng_uniform4(key, pixel, sample, 0u);
   const bool grid = sampler == CLPT_SAMPLER_GRID;
   const uint stratum = grid ? k : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
-  const float jx = grid ? 0.5f : u.u0;
-  const float jy = grid ? 0.5f : u.u1;
-  return f2(((float)(stratum & 3u) + jx) * 0.25f, ((float)(stratum >> 2) + jy) * 0.25f);
+  const real jx = grid ? 0.5f : u.u0;
+  const real jy = grid ? 0.5f : u.u1;
+  return f2(((real)(stratum & 3u) + jx) * 0.25f, ((real)(stratum >> 2) + jy) * 0.25f);
 }
 
 /* Unit direction of the camera ray through image position (col + sx, row + sy). */
 CLPT_INLINE Vec3 camera_ray_direction(const GpuCamera* camera, uint width, uint height, uint col,
                                       uint row, Float2 subpixel) {
-  const float fx = ((float)col + subpixel.x) / (float)width;
-  const float fy = ((float)(height - 1u - row) + subpixel.y) / (float)height;
+  const real fx = ((real)col + subpixel.x) / (real)width;
+  const real fy = ((real)(height - 1u - row) + subpixel.y) / (real)height;
   Vec3 on_sensor = v3_load(camera->sensor_center);
   on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_right), fx - 0.5f);
   on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_up), fy - 0.5f);

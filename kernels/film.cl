@@ -1,8 +1,9 @@
 /* film.cl: per-pixel statistics of one pass.
  *
  * The paths of a launch leave their results per job; film_sum_jobs then gives each pixel to one
- * work-item, which sums its samples in float (a pass holds at most a few thousand samples, so a
- * float sum loses nothing that matters) and writes, not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
+ * work-item, which sums its samples in `real` (float, or double under the double preset; a pass
+ * holds at most a few thousand samples, so a float sum loses nothing that matters) and writes,
+ * not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
  * dropped here (bit test, survives fast maths) and show up as valid_samples < samples. */
 #ifndef CLPT_FILM_CL
 #define CLPT_FILM_CL
@@ -13,7 +14,7 @@
 typedef struct PixelAccumulator {
   Vec3 sum;
   Vec3 sum_sq;
-  float valid_samples;
+  real valid_samples;
   uint segments;
 } PixelAccumulator;
 
@@ -21,7 +22,7 @@ CLPT_INLINE PixelAccumulator pixel_accumulator_new(void) {
   PixelAccumulator acc;
   acc.sum = v3_splat(0.0f);
   acc.sum_sq = v3_splat(0.0f);
-  acc.valid_samples = 0.0f;
+  acc.valid_samples = (real)0;
   acc.segments = 0u;
   return acc;
 }
@@ -32,17 +33,17 @@ CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, Vec3 radiance, uin
   const Vec3 value = v3_select(valid, radiance, v3_splat(0.0f));
   acc->sum = v3_add(acc->sum, value);
   acc->sum_sq = v3_add(acc->sum_sq, v3_mul(value, value));
-  acc->valid_samples += valid ? 1.0f : 0.0f;
+  acc->valid_samples += valid ? (real)1 : (real)0;
 }
 
 CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
-  out->sum[0] = acc->sum.x;
-  out->sum[1] = acc->sum.y;
-  out->sum[2] = acc->sum.z;
-  out->valid_samples = acc->valid_samples;
-  out->sum_sq[0] = acc->sum_sq.x;
-  out->sum_sq[1] = acc->sum_sq.y;
-  out->sum_sq[2] = acc->sum_sq.z;
+  out->sum[0] = (float)acc->sum.x;
+  out->sum[1] = (float)acc->sum.y;
+  out->sum[2] = (float)acc->sum.z;
+  out->valid_samples = (float)acc->valid_samples;
+  out->sum_sq[0] = (float)acc->sum_sq.x;
+  out->sum_sq[1] = (float)acc->sum_sq.y;
+  out->sum_sq[2] = (float)acc->sum_sq.z;
   out->segments = acc->segments;
 }
 
@@ -50,9 +51,9 @@ CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumula
  * pixel j % pixel_count; results[4 j + 0..2] hold its radiance, results[4 j + 3] the bits of its
  * segment count. */
 CLPT_INLINE void job_result_store(__global float* results, uint job, Vec3 radiance, uint segments) {
-  results[4 * job + 0] = radiance.x;
-  results[4 * job + 1] = radiance.y;
-  results[4 * job + 2] = radiance.z;
+  results[4 * job + 0] = (float)radiance.x;
+  results[4 * job + 1] = (float)radiance.y;
+  results[4 * job + 2] = (float)radiance.z;
   results[4 * job + 3] = as_float(segments);
 }
 

@@ -17,7 +17,13 @@
  *    passes it as `skip`: no self-hit even at grazing angles, where the near-zero root's error
  *    (about 1e-6 / cos(theta) on the walls) would exceed ray_epsilon.
  * Written with selects rather than early returns, so that the scene loop is straight-line code.
- * Contract: d is unit length; returns the smallest root > t_min, or INFINITY. */
+ * The fast preset drops the Haines discriminant for b'^2 - c' (exact enough on the book's
+ * scenes, wrong for a small sphere far away). The textbook form with the centre c = s0 - r n0,
+ * b = (c - o).d and disc = b^2 - (|c - o|^2 - r^2) is kept for measurement only: on the
+ * radius-1e5 walls its terms are about 1e10, of which float keeps about 1e3 absolute, so the
+ * ceiling moves by millimetres and covers much of the 0.01-high light cap: the book's image comes
+ * out 11% too dark (README "Precision presets").
+ * Contract: d is unit length; returns the smallest root > t_min, or CLPT_NO_HIT. */
 #ifndef CLPT_INTERSECT_CL
 #define CLPT_INTERSECT_CL
 
@@ -25,40 +31,70 @@
 #include "maths.cl"
 
 typedef struct Hit {
-  float t;    /* distance along the unit ray, INFINITY when nothing was hit */
+  real t;     /* distance along the unit ray, CLPT_NO_HIT when nothing was hit */
   int sphere; /* index into the sphere buffer, -1 when nothing was hit */
 } Hit;
 
-CLPT_INLINE float sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3 d, float t_min) {
+/* Which formula (kernel_options.cpp decides, from the precision preset):
+ *   CLPT_INTERSECT_CENTRE     textbook, centre-based (measured only: README "Precision presets")
+ *   CLPT_INTERSECT_SURFACE    s0/n0 form, disc = b'^2 - c'
+ *   CLPT_INTERSECT_ROBUST     s0/n0 form, disc = r^2 - |l|^2 (Haines) */
+#define CLPT_INTERSECT_CENTRE 0
+#define CLPT_INTERSECT_SURFACE 1
+#define CLPT_INTERSECT_ROBUST 2
+#ifndef CLPT_INTERSECT
+#define CLPT_INTERSECT CLPT_INTERSECT_ROBUST
+#endif
+
+#if CLPT_INTERSECT == CLPT_INTERSECT_CENTRE
+CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t_min) {
+  const real r = sphere->radius;
+  const Vec3 centre = v3_add_scaled(v3_load_global(sphere->surface_point), v3_load_global(sphere->surface_normal), -r);
+  const Vec3 oc = v3_sub(centre, o);
+  const real b = v3_dot(oc, d);
+  const real disc = b * b - v3_dot(oc, oc) + r * r;
+  const real root = clpt_sqrt(fmax(disc, (real)0));
+  const real t_near = b - root;
+  const real t_far = b + root;
+  const real t_pick = t_near > t_min ? t_near : t_far;
+  return disc < (real)0 || t_pick <= t_min ? CLPT_NO_HIT : t_pick;
+}
+#else
+CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t_min) {
   const Vec3 n0 = v3_load_global(sphere->surface_normal);
-  const float r = sphere->radius;
+  const real r = sphere->radius;
   const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), o);
-  const float c_prime = v3_dot(e, e) - 2.0f * r * v3_dot(n0, e);
-  const float b_prime = v3_dot(e, d) - r * v3_dot(n0, d);
+  const real c_prime = v3_dot(e, e) - (real)2 * r * v3_dot(n0, e);
+  const real b_prime = v3_dot(e, d) - r * v3_dot(n0, d);
+#if CLPT_INTERSECT == CLPT_INTERSECT_SURFACE
+  const real disc = b_prime * b_prime - c_prime;
+#else
   const Vec3 l = v3_add_scaled(v3_add_scaled(e, n0, -r), d, -b_prime);
-  const float disc = r * r - v3_dot(l, l);
-  const float q = b_prime + copysign(sqrt(fmax(disc, 0.0f)), b_prime);
-  const float root_a = q;
-  const float root_b = c_prime / q;
+  const real disc = r * r - v3_dot(l, l);
+#endif
+  const real q = b_prime + copysign(clpt_sqrt(fmax(disc, (real)0)), b_prime);
+  const real root_a = q;
+  const real root_b = c_prime / q;
   /* Selects, not fmin/fmax: the compiler pairs fmin/fmax of the same operands into a 2-wide
    * vector operation, which stops PoCL's vectoriser across work-items (measured: 3.3x slower). */
   const bool a_first = root_a < root_b;
-  const float t_near = a_first ? root_a : root_b;
-  const float t_far = a_first ? root_b : root_a;
-  const float t_pick = t_near > t_min ? t_near : t_far;
-  const float t = t_pick > t_min ? t_pick : INFINITY;
+  const real t_near = a_first ? root_a : root_b;
+  const real t_far = a_first ? root_b : root_a;
+  const real t_pick = t_near > t_min ? t_near : t_far;
+  const real t = t_pick > t_min ? t_pick : CLPT_NO_HIT;
   /* A miss: no real root, or outside the sphere and moving away (both roots negative). */
-  const bool miss = disc < 0.0f || (c_prime > 0.0f && b_prime < 0.0f);
-  return miss ? INFINITY : t;
+  const bool miss = disc < (real)0 || (c_prime > (real)0 && b_prime < (real)0);
+  return miss ? CLPT_NO_HIT : t;
 }
+#endif
 
 /* Closest hit over all spheres but `skip` (-1: none); a linear scan, the book's scenes have 8.
  * A scene-specialised build fixes CLPT_SPHERE_COUNT, so the loop unrolls into straight-line code
  * (which PoCL can vectorise across work-items); the generic build reads the count at run time. */
 CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_count, Vec3 o, Vec3 d,
-                                float t_min, int skip) {
+                                real t_min, int skip) {
   Hit hit;
-  hit.t = INFINITY;
+  hit.t = CLPT_NO_HIT;
   hit.sphere = -1;
 #ifdef CLPT_SPHERE_COUNT
   (void)sphere_count;
@@ -67,7 +103,7 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
 #else
   for (uint i = 0; i < sphere_count; ++i) {
 #endif
-    const float t = sphere_intersect(&spheres[i], o, d, t_min);
+    const real t = sphere_intersect(&spheres[i], o, d, t_min);
     const bool closer = t < hit.t && (int)i != skip;
     hit.t = closer ? t : hit.t;
     hit.sphere = closer ? (int)i : hit.sphere;
@@ -77,9 +113,9 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
 
 /* Outward unit normal at the hit point o + t d: (p - c) / r = n0 + (t d - e) / r, which keeps
  * full precision for huge r (it tends to n0). */
-CLPT_INLINE Vec3 sphere_normal_at(__global const GpuSphere* sphere, Vec3 o, Vec3 d, float t) {
+CLPT_INLINE Vec3 sphere_normal_at(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t) {
   const Vec3 e = v3_sub(v3_load_global(sphere->surface_point), o);
-  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), 1.0f / sphere->radius);
+  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), (real)1 / (real)sphere->radius);
   return v3_normalize(v3_add(v3_load_global(sphere->surface_normal), offset));
 }
 

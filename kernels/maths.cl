@@ -8,46 +8,77 @@
  *
  * unit_circle() replaces sin/cos: PoCL's accurate libm sin/cos took two thirds of a naive
  * path-tracing kernel's time (numerics.md). A quadrant reduction plus short Taylor polynomials
- * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free. */
+ * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free.
+ *
+ * Precision presets (host/kernels/kernel_options.cpp decides; README "Precision presets"):
+ *   CLPT_PRECISION 0 fast:   real = float, built with -cl-fast-relaxed-math; native_* sin, cos,
+ *                            powr and sqrt; the cheaper surface-point intersection (intersect.cl)
+ *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
+ *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow
+ * Buffers of the scene stay float (camera-relative, so their rounding is relative to distances
+ * inside the scene); random numbers stay 24-bit. */
 #ifndef CLPT_MATHS_CL
 #define CLPT_MATHS_CL
 
-#define CLPT_PI 3.14159265358979323846f
+#define CLPT_PRECISION_FAST 0
+#define CLPT_PRECISION_ROBUST 1
+#define CLPT_PRECISION_DOUBLE 2
+#ifndef CLPT_PRECISION
+#define CLPT_PRECISION CLPT_PRECISION_ROBUST
+#endif
+
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+#else
+typedef float real;
+#endif
+
+#define CLPT_PI ((real)3.14159265358979323846)
 #define CLPT_INLINE inline __attribute__((always_inline))
+/* Distance reported for "no hit". Finite on purpose: under -cl-fast-relaxed-math (which implies
+ * -cl-finite-math-only) a compiler may fold comparisons with INFINITY. */
+#define CLPT_NO_HIT ((real)1e30f)
+
+#if CLPT_PRECISION == CLPT_PRECISION_FAST
+#define clpt_sqrt(x) native_sqrt(x)
+#else
+#define clpt_sqrt(x) sqrt(x)
+#endif
 
 typedef struct Vec3 {
-  float x, y, z;
+  real x, y, z;
 } Vec3;
 
-CLPT_INLINE Vec3 v3(float x, float y, float z) {
+CLPT_INLINE Vec3 v3(real x, real y, real z) {
   Vec3 v;
   v.x = x;
   v.y = y;
   v.z = z;
   return v;
 }
-CLPT_INLINE Vec3 v3_splat(float s) { return v3(s, s, s); }
+CLPT_INLINE Vec3 v3_splat(real s) { return v3(s, s, s); }
 CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], v[1], v[2]); }
 CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], v[1], v[2]); }
 CLPT_INLINE Vec3 v3_add(Vec3 a, Vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 CLPT_INLINE Vec3 v3_sub(Vec3 a, Vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 CLPT_INLINE Vec3 v3_mul(Vec3 a, Vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
-CLPT_INLINE Vec3 v3_scale(Vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
+CLPT_INLINE Vec3 v3_scale(Vec3 a, real s) { return v3(a.x * s, a.y * s, a.z * s); }
 CLPT_INLINE Vec3 v3_neg(Vec3 a) { return v3(-a.x, -a.y, -a.z); }
-CLPT_INLINE float v3_dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+CLPT_INLINE real v3_dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 /* a + s b */
-CLPT_INLINE Vec3 v3_add_scaled(Vec3 a, Vec3 b, float s) { return v3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
-CLPT_INLINE Vec3 v3_normalize(Vec3 a) { return v3_scale(a, 1.0f / sqrt(v3_dot(a, a))); }
+CLPT_INLINE Vec3 v3_add_scaled(Vec3 a, Vec3 b, real s) { return v3(a.x + s * b.x, a.y + s * b.y, a.z + s * b.z); }
+CLPT_INLINE Vec3 v3_normalize(Vec3 a) { return v3_scale(a, (real)1 / clpt_sqrt(v3_dot(a, a))); }
 /* Component-wise choice. Never write `c ? vec_a : vec_b` on Vec3: a select of a whole struct
  * stops PoCL's vectoriser ("instruction return type cannot be vectorized"). */
 CLPT_INLINE Vec3 v3_select(bool c, Vec3 a, Vec3 b) { return v3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z); }
 CLPT_INLINE bool v3_is_zero(Vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
 
 typedef struct Float2 {
-  float x, y;
+  real x, y;
 } Float2;
 
-CLPT_INLINE Float2 f2(float x, float y) {
+CLPT_INLINE Float2 f2(real x, real y) {
   Float2 v;
   v.x = x;
   v.y = y;
@@ -55,6 +86,11 @@ CLPT_INLINE Float2 f2(float x, float y) {
 }
 
 /* (cos 2 pi u, sin 2 pi u) for u in [0, 1]. */
+#if CLPT_PRECISION == CLPT_PRECISION_FAST
+CLPT_INLINE Float2 unit_circle(float u) { return f2(native_cos(2.0f * CLPT_PI * u), native_sin(2.0f * CLPT_PI * u)); }
+#elif CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+CLPT_INLINE Float2 unit_circle(real u) { return f2(cos(2.0 * CLPT_PI * u), sin(2.0 * CLPT_PI * u)); }
+#else
 CLPT_INLINE Float2 unit_circle(float u) {
   const float quadrant = rint(u * 4.0f);
   const float x = 2.0f * CLPT_PI * (u - 0.25f * quadrant); /* in [-pi/4, pi/4] */
@@ -71,10 +107,16 @@ CLPT_INLINE Float2 unit_circle(float u) {
   const float sign = (q & 2) ? -1.0f : 1.0f;
   return f2(sign * odd_c, sign * odd_s);
 }
+#endif
 
 /* u^a for u in [0, 1] and a > 0, to about 3e-7 relative: log2 from the exponent bits and an
  * atanh series, exp2 from a Taylor polynomial and the exponent bits. The library pow is a call
  * PoCL cannot vectorise and its exp2/log2 use 2-wide vectors internally, which stop the vectoriser. */
+#if CLPT_PRECISION == CLPT_PRECISION_FAST
+CLPT_INLINE float pow_unit(float u, float a) { return u <= 0.0f ? 0.0f : native_powr(u, a); }
+#elif CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+CLPT_INLINE real pow_unit(real u, real a) { return u <= 0.0 ? 0.0 : pow(u, a); }
+#else
 CLPT_INLINE float pow_unit(float u, float a) {
   const uint bits = as_uint(u);
   int e = (int)(bits >> 23) - 127;
@@ -95,13 +137,14 @@ CLPT_INLINE float pow_unit(float u, float a) {
   const float scale = as_float((uint)(max(k, -126) + 127) << 23);
   return (u <= 0.0f || k < -126) ? 0.0f : exp_z * scale;
 }
+#endif
 
 /* Orthonormal basis around unit n (Duff et al., JCGT 2017): branch-free. Returns the tangent in
  * *t and the bitangent in *b, (t, b, n) right-handed. */
 CLPT_INLINE void orthonormal_basis(Vec3 n, Vec3* t, Vec3* b) {
-  const float sign = copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float bxy = n.x * n.y * a;
+  const real sign = copysign((real)1, n.z);
+  const real a = (real)-1 / (sign + n.z);
+  const real bxy = n.x * n.y * a;
   *t = v3(1.0f + sign * n.x * n.x * a, sign * bxy, -sign * n.x);
   *b = v3(bxy, sign + n.y * n.y * a, -n.y);
 }
@@ -116,8 +159,15 @@ CLPT_INLINE Vec3 to_world(Vec3 local_dir, Vec3 n) {
 /* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
  * may fold `x != x` to false (numerics.md). */
 CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+CLPT_INLINE bool is_finite_real(double x) {
+  return (as_ulong(x) & 0x7ff0000000000000ul) != 0x7ff0000000000000ul;
+}
+#else
+#define is_finite_real is_finite_bits
+#endif
 CLPT_INLINE bool v3_all_finite(Vec3 v) {
-  return is_finite_bits(v.x) && is_finite_bits(v.y) && is_finite_bits(v.z);
+  return is_finite_real(v.x) && is_finite_real(v.y) && is_finite_real(v.z);
 }
 
 #endif

@@ -10,29 +10,34 @@
 #ifndef CLPT_PATH_STATE_H
 #define CLPT_PATH_STATE_H
 
-/*  X(type, name, bytes, meaning) */
+/*  X(type, name, bytes, copied, meaning)
+ * `real` is float, or double under the double preset: the host passes CLPT_REAL_BYTES as the
+ * size it allocates. `copied` is an expression the device evaluates at compile time: compaction
+ * copies a field only when it is non-zero (a field the specialised kernel never reads costs
+ * nothing to move). */
 #define CLPT_PATH_STATE_FIELDS(X)                                                                 \
-  X(float, origin_x, 4, "ray origin, camera-relative world units")                               \
-  X(float, origin_y, 4, "")                                                                      \
-  X(float, origin_z, 4, "")                                                                      \
-  X(float, direction_x, 4, "unit ray direction")                                                 \
-  X(float, direction_y, 4, "")                                                                   \
-  X(float, direction_z, 4, "")                                                                   \
-  X(float, throughput_r, 4, "product of BSDF weights so far")                                    \
-  X(float, throughput_g, 4, "")                                                                  \
-  X(float, throughput_b, 4, "")                                                                  \
-  X(float, radiance_r, 4, "light gathered so far")                                               \
-  X(float, radiance_g, 4, "")                                                                    \
-  X(float, radiance_b, 4, "")                                                                    \
-  X(uint, job, 4, "job index in the pass: sample (job / pixel_count), pixel (job % pixel_count)") \
-  X(uint, bounce, 4, "index of the current segment, 0 = camera ray")                            \
-  X(uint, segments, 4, "segments traced so far")                                                 \
-  X(int, skip_sphere, 4, "sphere the ray leaves on its outer side, or -1")
+  X(real, origin_x, CLPT_REAL_BYTES, 1, "ray origin, camera-relative world units")               \
+  X(real, origin_y, CLPT_REAL_BYTES, 1, "")                                                      \
+  X(real, origin_z, CLPT_REAL_BYTES, 1, "")                                                      \
+  X(real, direction_x, CLPT_REAL_BYTES, 1, "unit ray direction")                                 \
+  X(real, direction_y, CLPT_REAL_BYTES, 1, "")                                                   \
+  X(real, direction_z, CLPT_REAL_BYTES, 1, "")                                                   \
+  X(real, throughput_r, CLPT_REAL_BYTES, 1, "product of BSDF weights so far")                    \
+  X(real, throughput_g, CLPT_REAL_BYTES, 1, "")                                                  \
+  X(real, throughput_b, CLPT_REAL_BYTES, 1, "")                                                  \
+  X(real, radiance_r, CLPT_REAL_BYTES, 1, "light gathered so far")                               \
+  X(real, radiance_g, CLPT_REAL_BYTES, 1, "")                                                    \
+  X(real, radiance_b, CLPT_REAL_BYTES, 1, "")                                                    \
+  X(real, bsdf_pdf, CLPT_REAL_BYTES, CLPT_NEE_COMPILED, "pdf of the BSDF sample that made the ray (nee)") \
+  X(uint, job, 4, 1, "job index in the pass: sample (job / pixel_count), pixel (job % pixel_count)") \
+  X(uint, bounce, 4, 1, "index of the current segment, 0 = camera ray")                         \
+  X(uint, segments, 4, 1, "segments traced so far")                                              \
+  X(int, skip_sphere, 4, 1, "sphere the ray leaves on its outer side, or -1")
 
 /* Per-iteration scratch, one set: written and read within one bounce. */
 #define CLPT_PATH_SCRATCH_FIELDS(X)                                                               \
-  X(float, hit_t, 4, "distance to the closest hit, INFINITY for a miss")                         \
-  X(int, hit_sphere, 4, "sphere hit, -1 for a miss")                                             \
-  X(int, alive, 4, "1 while the path continues after shading")
+  X(real, hit_t, CLPT_REAL_BYTES, 1, "distance to the closest hit, CLPT_NO_HIT for a miss")      \
+  X(int, hit_sphere, 4, 1, "sphere hit, -1 for a miss")                                          \
+  X(int, alive, 4, 1, "1 while the path continues after shading")
 
 #endif

@@ -42,6 +42,26 @@ typedef struct GpuSphere {
   float ior;               /* index of refraction inside (glass only); outside is 1 */
 } GpuSphere;
 
+/* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
+#define CLPT_ESTIMATOR_BOOK 0u /* the book's: light only where a path hits an emitter */
+#define CLPT_ESTIMATOR_NEE 1u  /* next-event estimation + MIS with BSDF sampling (light.cl) */
+
+/* No Russian roulette (GpuRenderParams.rr_from). */
+#define CLPT_RR_NEVER 0xffffffffu
+
+/* An emitter as next-event estimation samples it: 32 bytes. Only a spherical cap of the emitter
+ * is sampled, uniformly by area: the part that no other sphere hides (the host computes it in
+ * double, device_scene.cpp). The book's light is a radius-100 sphere of which only a cap of radius
+ * about 1.41 pokes through the ceiling; sampling the whole sphere would waste all but 5e-5 of the
+ * shadow rays on it. */
+typedef struct GpuLight {
+  float cap_axis[3];       /* unit, from the emitter's centre through the middle of the cap */
+  clpt_u32 sphere;         /* index of the emitter in the sphere buffer */
+  float one_minus_cos_cap; /* the cap: points p with 1 - axis.(p - c)/r <= this; in (0, 2] */
+  float cap_area;          /* 2 pi r^2 one_minus_cos_cap, world units^2 */
+  float pad[2];
+} GpuLight;
+
 /* Pinhole camera at the origin: 48 bytes. A sample at image position (fx, fy) in [0,1)^2, fy
  * measured upwards, looks along sensor_center + sensor_right*(fx-0.5) + sensor_up*(fy-0.5). */
 typedef struct GpuCamera {
@@ -53,7 +73,7 @@ typedef struct GpuCamera {
   float pad2;
 } GpuCamera;
 
-/* Everything one pass needs besides the sphere buffer: 96 bytes, passed by value. */
+/* Everything one pass needs besides the sphere and light buffers: 112 bytes, passed by value. */
 typedef struct GpuRenderParams {
   GpuCamera camera;
   clpt_u32 width;            /* pixels */
@@ -68,6 +88,10 @@ typedef struct GpuRenderParams {
   float ray_epsilon;         /* hits closer than this along a ray are ignored, world units */
   clpt_u32 pixel_begin;      /* first pixel (row-major, row 0 at the top) of this launch */
   clpt_u32 pixel_count;      /* pixels in this launch */
+  clpt_u32 estimator;        /* CLPT_ESTIMATOR_* (read only by the generic kernel) */
+  clpt_u32 rr_from;          /* Russian roulette at scattering events from this bounce on, or CLPT_RR_NEVER */
+  clpt_u32 light_count;      /* entries in the light buffer (next-event estimation) */
+  clpt_u32 pad;
 } GpuRenderParams;
 
 /* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
@@ -107,11 +131,18 @@ typedef struct GpuPixelPass {
   X(GpuRenderParams, ray_epsilon)                                                                 \
   X(GpuRenderParams, pixel_begin)                                                                 \
   X(GpuRenderParams, pixel_count)                                                                 \
+  X(GpuRenderParams, estimator)                                                                   \
+  X(GpuRenderParams, rr_from)                                                                     \
+  X(GpuRenderParams, light_count)                                                                 \
+  X(GpuLight, cap_axis)                                                                           \
+  X(GpuLight, sphere)                                                                             \
+  X(GpuLight, one_minus_cos_cap)                                                                  \
+  X(GpuLight, cap_area)                                                                           \
   X(GpuPixelPass, sum)                                                                            \
   X(GpuPixelPass, valid_samples)                                                                  \
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuSphere) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
 
 #endif /* CLPT_TYPES_H */

@@ -18,15 +18,16 @@
 #include "path.cl"
 #include "film.cl"
 
-#define CLPT_STATE_PARAM(type, name, bytes, doc) , __global type* name
+#define CLPT_STATE_PARAM(type, name, bytes, copied, doc) , __global type* name
 #define CLPT_STATE_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_STATE_PARAM)
 #define CLPT_SCRATCH_PARAMS CLPT_PATH_SCRATCH_FIELDS(CLPT_STATE_PARAM)
-#define CLPT_STATE_NAME(type, name, bytes, doc) , name
+#define CLPT_STATE_NAME(type, name, bytes, copied, doc) , name
 #define CLPT_STATE_ARGS CLPT_PATH_STATE_FIELDS(CLPT_STATE_NAME)
 /* The compaction's destination set: the same fields with a `to_` prefix. */
-#define CLPT_TO_PARAM(type, name, bytes, doc) , __global type* to_##name
+#define CLPT_TO_PARAM(type, name, bytes, copied, doc) , __global type* to_##name
 #define CLPT_TO_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_TO_PARAM)
-#define CLPT_COPY_FIELD(type, name, bytes, doc) to_##name[to] = name[from];
+#define CLPT_COPY_FIELD(type, name, bytes, copied, doc) \
+  if (copied) to_##name[to] = name[from];
 
 CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_STATE_PARAMS) {
   PathState p;
@@ -35,6 +36,7 @@ CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_ST
   p.direction = v3(direction_x[slot], direction_y[slot], direction_z[slot]);
   p.throughput = v3(throughput_r[slot], throughput_g[slot], throughput_b[slot]);
   p.radiance = v3(radiance_r[slot], radiance_g[slot], radiance_b[slot]);
+  p.bsdf_pdf = CLPT_NEE_COMPILED ? bsdf_pdf[slot] : (real)0;
   p.pixel = params->pixel_begin + j % params->pixel_count;
   p.sample = params->sample_begin + j / params->pixel_count;
   p.bounce = bounce[slot];
@@ -57,6 +59,7 @@ CLPT_INLINE void path_store(uint slot, uint job_index, const PathState* p CLPT_S
   radiance_r[slot] = p->radiance.x;
   radiance_g[slot] = p->radiance.y;
   radiance_b[slot] = p->radiance.z;
+  if (CLPT_NEE_COMPILED) bsdf_pdf[slot] = p->bsdf_pdf;
   job[slot] = job_index;
   bounce[slot] = p->bounce;
   segments[slot] = p->segments;
@@ -85,7 +88,8 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderPar
 }
 
 /* Ended paths write their job's result (job_result_store, film.cl). */
-__kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams params, uint count,
+__kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                       const GpuRenderParams params, uint count,
                        __global float* results CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
@@ -93,7 +97,7 @@ __kernel void wf_shade(__global const GpuSphere* spheres, const GpuRenderParams 
   Hit hit;
   hit.t = hit_t[i];
   hit.sphere = hit_sphere[i];
-  path_shade(&p, hit, spheres, &params);
+  path_shade(&p, hit, spheres, lights, &params);
   const uint job_index = job[i];
   path_store(i, job_index, &p CLPT_STATE_ARGS);
   alive[i] = p.alive;

@@ -7,7 +7,8 @@
 
 namespace clpt::test {
 
-TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed, Sampler sampler) {
+TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed, Sampler sampler,
+                           Precision precision) {
   scene.settings.width = width;
   scene.settings.height = height;
   scene.settings.spp = spp;
@@ -16,6 +17,7 @@ TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint
   RenderRequest request;
   request.use_kernel_cache = false;  // tests compile the kernels under test from source
   request.scene = scene;
+  request.precision = precision;
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";
   RenderReport report;

@@ -1,6 +1,9 @@
 // The book's three scenes rendered by clpt match converged renders of the book's own renderer
 // (gemspt) in region means: walls, floor, ceiling, light, both balls and a shadow. An image mean
-// alone is not enough (numerics.md: a mean that was right hid a ball 20% too dark).
+// alone is not enough (numerics.md: a mean that was right hid a ball 20% too dark). Every
+// estimator must converge to the book's image at the same path-length limit, so each variant
+// (the book's estimator, next-event estimation, either with Russian roulette) is held to the same
+// references.
 //
 // References: tests/reference/gemspt_<scene>_160x120.exr, made by gemspt (outside this tree) at
 // 8192 spp; provenance in tests/reference/README.md. A missing reference fails the test.
@@ -22,7 +25,24 @@ namespace clpt::test {
 namespace {
 
 constexpr int kWidth = 160, kHeight = 120;
-constexpr int64_t kSpp = 512;
+
+// An estimator configuration and the samples it gets (nee needs far fewer for the same noise).
+struct Variant {
+  const char* name;
+  const char* estimator;
+  int rr_from;  // -1: no Russian roulette
+  int64_t spp;
+};
+constexpr Variant kVariants[] = {
+    {"book", "book", -1, 512},
+    {"nee", "nee", -1, 128},
+    {"book_rr", "book", 2, 512},
+    {"nee_rr", "nee", 2, 128},
+};
+constexpr int kScenes = 3;
+
+// gtest prints parameters in test names and messages: the variant's name, not its bytes.
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 
 struct Region {
   std::string name;
@@ -55,7 +75,7 @@ double z_for_two_sided(double alpha) {
   return lo;
 }
 
-void compare_with_gemspt(const std::string& scene_name) {
+void compare_with_gemspt(const std::string& scene_name, const Variant& variant) {
   const std::string ref_path = source_dir() + "/tests/reference/gemspt_" + scene_name + "_160x120.exr";
   ASSERT_TRUE(std::filesystem::exists(ref_path)) << "missing reference " << ref_path;
   const LoadedImage ref = read_image(ref_path);
@@ -69,12 +89,15 @@ void compare_with_gemspt(const std::string& scene_name) {
       ref_var.push_back(ref.pixels[p * channels + ref.channel(std::string("variance.") + c)]);
     }
 
-  const TestRender r = render_for_test(load_book_scene(scene_name), kWidth, kHeight, kSpp, 2015);
+  Scene scene = load_book_scene(scene_name);
+  scene.settings.estimator = variant.estimator;
+  scene.settings.rr_from = variant.rr_from;
+  const TestRender r = render_for_test(scene, kWidth, kHeight, variant.spp, 2015);
   const auto mean = r.film.mean_rgb();
   const auto var = r.film.variance_rgb();
   const std::vector<Region> regions = load_regions();
   ASSERT_GE(regions.size(), 8u);
-  const int comparisons = 3 /*scenes*/ * int(regions.size()) * 3 /*channels*/;
+  const int comparisons = kScenes * int(std::size(kVariants)) * int(regions.size()) * 3 /*channels*/;
   const double z = z_for_two_sided(1 - std::pow(1 - 0.01, 1.0 / comparisons));
   for (const Region& g : regions) {
     const RegionStats a = region_stats(mean, var, kWidth, g.x0, g.y0, g.x1, g.y1);
@@ -83,16 +106,23 @@ void compare_with_gemspt(const std::string& scene_name) {
       const double sigma = std::sqrt(a.variance_of_mean[c] + b.variance_of_mean[c]);
       const double diff = a.mean[c] - b.mean[c];
       EXPECT_LE(std::abs(diff), z * sigma)
-          << scene_name << " region " << g.name << " channel " << "RGB"[c] << ": clpt " << a.mean[c]
+          << scene_name << " (" << variant.name << ") region " << g.name << " channel " << "RGB"[c] << ": clpt " << a.mean[c]
           << " gemspt " << b.mean[c] << " (" << 100 * diff / b.mean[c] << "%, " << diff / sigma
           << " sigma, limit " << z << ")";
     }
   }
 }
 
-TEST(BookImages, DiffuseMatchesGemspt) { compare_with_gemspt("diffuse"); }
-TEST(BookImages, SpecularMatchesGemspt) { compare_with_gemspt("specular"); }
-TEST(BookImages, GlassMatchesGemspt) { compare_with_gemspt("glass"); }
+class BookImages : public ::testing::TestWithParam<std::tuple<std::string, Variant>> {};
+
+TEST_P(BookImages, MatchGemspt) { compare_with_gemspt(std::get<0>(GetParam()), std::get<1>(GetParam())); }
+
+INSTANTIATE_TEST_SUITE_P(
+    ScenesAndEstimators, BookImages,
+    ::testing::Combine(::testing::Values("diffuse", "specular", "glass"), ::testing::ValuesIn(kVariants)),
+    [](const ::testing::TestParamInfo<BookImages::ParamType>& info) {
+      return std::get<0>(info.param) + "_" + std::get<1>(info.param).name;
+    });
 
 }  // namespace
 }  // namespace clpt::test

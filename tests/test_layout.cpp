@@ -31,7 +31,8 @@ TEST(StructLayout, HostMatchesDevice) {
   // The sizes the comments in types.h promise.
   EXPECT_EQ(sizeof(GpuSphere), 64u);
   EXPECT_EQ(sizeof(GpuCamera), 48u);
-  EXPECT_EQ(sizeof(GpuRenderParams), 96u);
+  EXPECT_EQ(sizeof(GpuRenderParams), 112u);
+  EXPECT_EQ(sizeof(GpuLight), 32u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);
 }
 

@@ -111,9 +111,10 @@ TEST(Limits, MemoryEstimateFollowsTheRenderers) {
   const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
   EXPECT_EQ(mk.total_bytes, 10u * 64 + 1000u * 32 + 1000u * 4096 * 16);
   EXPECT_EQ(estimate_device_memory(ExecutionForm::Megakernel, 1ull << 26, 1, 0, d).largest_bytes, 256u << 20);
-  // Wavefront: 65536 paths x 140 B, pass statistics, job results bounded by the budget.
+  // Wavefront: 65536 paths x 256 B (the double preset's state, the largest), pass statistics,
+  // job results bounded by the budget.
   const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1ull << 20, 1, 65536, d);
-  EXPECT_EQ(wf.total_bytes, 64u + 65536u * 140 + (32u << 20) + (256u << 20));
+  EXPECT_EQ(wf.total_bytes, 64u + 65536u * 256 + (32u << 20) + (256u << 20));
   EXPECT_EQ(wf.largest_label, "job results");
 }
 

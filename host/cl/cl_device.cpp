@@ -1,5 +1,7 @@
 #include "cl/cl_device.h"
 
+#include <cstdlib>
+
 #include <algorithm>
 #include <cctype>
 
@@ -58,7 +60,10 @@ DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, c
   d.max_alloc_bytes = device_value<cl_ulong>(id, CL_DEVICE_MAX_MEM_ALLOC_SIZE, self);
   d.max_work_group_size = device_value<size_t>(id, CL_DEVICE_MAX_WORK_GROUP_SIZE, self);
   const std::string extensions = device_string(id, CL_DEVICE_EXTENSIONS, self);
-  d.fp64 = extensions.find("cl_khr_fp64") != std::string::npos;
+  // CLPT_HIDE_FP64=1 makes every device look as if it lacked fp64: a test hook for the error
+  // of --precision double on such a device, since PoCL's CPU devices all have it.
+  const char* hide_fp64 = std::getenv("CLPT_HIDE_FP64");
+  d.fp64 = extensions.find("cl_khr_fp64") != std::string::npos && !(hide_fp64 && std::string(hide_fp64) == "1");
   d.opencl_c_version = device_string(id, CL_DEVICE_OPENCL_C_VERSION, self);
   d.driver_version = device_string(id, CL_DRIVER_VERSION, self);
   d.device_version = device_string(id, CL_DEVICE_VERSION, self);

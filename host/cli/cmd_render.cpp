@@ -32,6 +32,10 @@ struct RenderOptions {
   std::string device;
   std::optional<int> width, height, max_bounces;
   std::optional<std::string> sampler;
+  std::string precision = "robust";
+  std::optional<std::string> intersection;
+  std::optional<std::string> estimator, light_sampling;
+  std::optional<int> rr_from;
   bool quiet = false;
   bool progress = false;
   bool explain = false;
@@ -72,6 +76,9 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
   if (o.height) s.height = *o.height;
   if (o.max_bounces) s.max_bounces = *o.max_bounces;
   if (o.sampler) s.sampler = *o.sampler == "grid" ? Sampler::Grid : Sampler::Jitter;
+  if (o.estimator) s.estimator = *o.estimator;
+  if (o.rr_from) s.rr_from = *o.rr_from;
+  if (o.light_sampling) s.light_sampling = *o.light_sampling;
   if (s.sampler == Sampler::Grid && (o.spp || !o.time_s) && s.spp % 16 != 0)
     throw Error(ExitCode::Usage, "--spp " + std::to_string(s.spp) +
                                      ": the grid sampler needs a multiple of 16 samples per pixel "
@@ -95,7 +102,8 @@ void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] c
         {"clpt:scene", scene.file},
         {"clpt:scene_hash", scene.file_hash},
         {"clpt:device", report.device},
-        {"clpt:precision", "robust (float32, IEEE maths)"},
+        {"clpt:precision", precision_name(report.precision)},
+        {"clpt:rr_from", std::to_string(scene.settings.rr_from)},
         {"clpt:estimator", scene.settings.estimator},
         {"clpt:sampler", sampler_name(scene.settings.sampler)},
         {"clpt:max_bounces", std::to_string(scene.settings.max_bounces)},
@@ -129,9 +137,10 @@ void print_summary(const Scene& scene, const RenderReport& r) {
   // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many.
   const std::string launches =
       r.form == ExecutionForm::Megakernel ? " in " + std::to_string(r.launches) + " launches" : "";
-  std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s on %s\n", scene.file.c_str(),
+  std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s, %s, estimator %s, on %s\n", scene.file.c_str(),
               scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
-              launches.c_str(), execution_form_name(r.form), r.device.c_str());
+              launches.c_str(), execution_form_name(r.form), precision_name(r.precision),
+              scene.settings.estimator.c_str(), r.device.c_str());
   std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
               "kernel build %.2f s (%s)\n",
               r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
@@ -194,18 +203,24 @@ void check_checkpoint_path(const std::string& path) {
 
 int run(const RenderOptions& o) {
   const std::string out = output_path(o);
+  const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (!o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
   Scene scene = load_scene_file(o.scene_path);
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
-  if (o.explain)
-    std::printf("%s", explain_kernel_options(o.generic ? generic_features() : features_for_scene(scene)).c_str());
+  if (o.explain) {
+    KernelFeatures features = o.generic ? generic_features(precision) : features_for_scene(scene, precision);
+    if (o.intersection) features.intersection = parse_intersection(*o.intersection);
+    std::printf("%s", explain_kernel_options(features).c_str());
+  }
 
   RenderRequest request;
   request.device = o.device;
   request.time_limit_s = o.time_s.value_or(0.0);
   request.spp_given = o.spp.has_value() || !o.time_s.has_value();
   request.generic_kernel = o.generic;
+  request.precision = precision;
+  if (o.intersection) request.intersection = parse_intersection(*o.intersection);
   if (o.form != "auto")
     request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
   request.paths_in_flight = o.paths_in_flight;
@@ -242,6 +257,21 @@ std::function<int()> add_render_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--sampler", o->sampler, "jitter (stratified) or grid (the book's 4x4 centres)")
       ->check(CLI::IsMember({"jitter", "grid"}));
+  cmd->add_option("--precision", o->precision,
+                  "fast (float, fast maths), robust (float, IEEE; default) or double (fp64)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"fast", "robust", "double"}));
+  cmd->add_option("--intersection", o->intersection,
+                  "Ray/sphere formula: centre, surface or robust (default: the precision preset's)")
+      ->check(CLI::IsMember({"centre", "surface", "robust"}));
+  cmd->add_option("--estimator", o->estimator,
+                  "book (no light sampling, the book's) or nee (next-event estimation + MIS); default: the scene's")
+      ->check(CLI::IsMember({"book", "nee"}));
+  cmd->add_option("--rr-from", o->rr_from, "Russian roulette from this bounce on (default: none)")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--light-sampling", o->light_sampling,
+                  "nee: sample the visible cap of each light (default) or the whole sphere")
+      ->check(CLI::IsMember({"cap", "sphere"}));
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing but errors");
   cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
   cmd->add_flag("--explain", o->explain, "Print how the kernel was specialised for the scene");

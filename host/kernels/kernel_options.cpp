@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "scene/device_scene.h"
+
 namespace clpt {
 
 const char* precision_name(Precision precision) {
@@ -19,6 +21,25 @@ std::optional<Precision> parse_precision(const std::string& name) {
   return std::nullopt;
 }
 
+const char* intersection_name(Intersection intersection) {
+  switch (intersection) {
+    case Intersection::Centre: return "centre";
+    case Intersection::Surface: return "surface";
+    default: return "robust";
+  }
+}
+
+std::optional<Intersection> parse_intersection(const std::string& name) {
+  if (name == "centre") return Intersection::Centre;
+  if (name == "surface") return Intersection::Surface;
+  if (name == "robust") return Intersection::Robust;
+  return std::nullopt;
+}
+
+Intersection default_intersection(Precision precision) {
+  return precision == Precision::Fast ? Intersection::Surface : Intersection::Robust;
+}
+
 const char* estimator_name(Estimator estimator) { return estimator == Estimator::Nee ? "nee" : "book"; }
 
 std::optional<Estimator> parse_estimator(const std::string& name) {
@@ -31,6 +52,10 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
   f.precision = precision;
   f.estimator = parse_estimator(scene.settings.estimator).value_or(Estimator::Book);
+  f.russian_roulette = scene.settings.rr_from >= 0;
+  if (f.estimator == Estimator::Nee)
+    f.light_count = static_cast<int>(
+        light_caps(scene, scene.settings.light_sampling == "sphere" ? LightSampling::Sphere : LightSampling::Cap).size());
   f.phong = false;
   f.glass = false;
   f.sphere_count = static_cast<int>(scene.spheres.size());
@@ -44,6 +69,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
 KernelFeatures generic_features(Precision precision) {
   KernelFeatures f;
   f.precision = precision;
+  f.generic = true;
   return f;
 }
 
@@ -51,9 +77,17 @@ std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
   o << "-cl-std=CL1.2";
+  // Fast maths lets the compiler reassociate and assume no NaN/Inf; the film's NaN/Inf guard is a
+  // bit test (maths.cl), which those assumptions cannot remove.
+  if (features.precision == Precision::Fast) o << " -cl-fast-relaxed-math";
+  o << " -DCLPT_PRECISION=" << static_cast<int>(features.precision);
+  o << " -DCLPT_INTERSECT=" << static_cast<int>(features.intersection.value_or(default_intersection(features.precision)));
   o << " -DCLPT_HAS_PHONG=" << (features.phong ? 1 : 0);
   o << " -DCLPT_HAS_GLASS=" << (features.glass ? 1 : 0);
+  o << " -DCLPT_HAS_RR=" << (features.generic || features.russian_roulette ? 1 : 0);
+  if (!features.generic) o << " -DCLPT_ESTIMATOR=" << static_cast<int>(features.estimator);
   if (features.sphere_count > 0) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
+  if (!features.generic && features.light_count >= 0) o << " -DCLPT_LIGHT_COUNT=" << features.light_count;
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -61,6 +95,23 @@ std::string kernel_build_options(const KernelFeatures& features) {
 std::string explain_kernel_options(const KernelFeatures& features) {
   std::ostringstream o;
   o << "kernel specialisation:\n";
+  o << "  precision: " << precision_name(features.precision)
+    << (features.precision == Precision::Fast     ? " (float, -cl-fast-relaxed-math, native maths)"
+        : features.precision == Precision::Double ? " (fp64 arithmetic, cl_khr_fp64)"
+                                                  : " (float, IEEE maths, the accurate intersection)")
+    << "\n";
+  o << "  intersection: " << intersection_name(features.intersection.value_or(default_intersection(features.precision)))
+    << (features.intersection ? " (--intersection)" : " (the preset's)") << "\n";
+  o << "  estimator: "
+    << (features.generic ? std::string("chosen at run time (generic kernel)")
+                         : std::string(estimator_name(features.estimator)) +
+                               (features.estimator == Estimator::Nee ? " (next-event estimation + MIS compiled in)"
+                                                                     : " (no light sampling compiled)"))
+    << "\n";
+  o << "  Russian roulette: "
+    << (features.generic ? "compiled, enabled at run time"
+                         : features.russian_roulette ? "compiled (--rr-from)" : "left out (no --rr-from)")
+    << "\n";
   o << "  Lambertian and emitter shading: always compiled\n";
   o << "  Phong shading: " << (features.phong ? "compiled (the scene has a Phong material)"
                                               : "left out (no Phong material in the scene)")

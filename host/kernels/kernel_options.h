@@ -19,6 +19,16 @@ const char* precision_name(Precision precision);
 // "fast" | "robust" | "double"; nullopt otherwise.
 std::optional<Precision> parse_precision(const std::string& name);
 
+// Ray/sphere formula (kernels/intersect.cl; `--intersection` overrides the preset's choice).
+//   centre:  textbook, from the sphere's centre: cheapest, and 11% too dark on the book's scene
+//   surface: from a surface point s0 and its normal (no radius^2 terms), disc = b'^2 - c'
+//   robust:  the surface form with Haines' discriminant r^2 - |l|^2 (exact for far small spheres)
+enum class Intersection { Centre = 0, Surface = 1, Robust = 2 };
+const char* intersection_name(Intersection intersection);
+std::optional<Intersection> parse_intersection(const std::string& name);
+// The preset's formula: fast -> surface, robust and double -> robust.
+Intersection default_intersection(Precision precision);
+
 // Path estimator (`--estimator`, scene `render.estimator`).
 //   book: the book's: no next-event estimation, light only where a path hits an emitter
 //   nee:  next-event estimation at every non-specular vertex, MIS (power heuristic) with BSDF hits
@@ -27,11 +37,16 @@ const char* estimator_name(Estimator estimator);
 std::optional<Estimator> parse_estimator(const std::string& name);
 
 struct KernelFeatures {
-  Precision precision = Precision::Robust;
+  Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)
+  std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
+  // Fixed with CLPT_ESTIMATOR unless `generic`, which reads GpuRenderParams.estimator at run time.
   Estimator estimator = Estimator::Book;
+  bool generic = false;           // every feature in; estimator and counts read at run time
+  bool russian_roulette = true;   // CLPT_HAS_RR
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (loop unrolled); 0: read at run time
+  int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop unrolled); -1: run time
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

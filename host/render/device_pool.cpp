@@ -86,6 +86,7 @@ void DevicePool::build(Member& m, const PoolSettings& settings) {
     m.share.form = settings.form.value_or(default_form_for(m.info));
     if (faults_.fails_build(m.position))
       FaultPlan::throw_injected(CL_BUILD_PROGRAM_FAILURE, "clBuildProgram", m.info.label());
+    check_precision_supported(settings.features.precision, m.info);
     m.ctx = std::make_unique<DeviceContext>(m.info);
     if (settings.use_kernel_cache) m.ctx->use_default_kernel_cache();
     m.share.device = m.ctx->where();

@@ -12,15 +12,19 @@
 namespace clpt {
 namespace {
 
-// Bytes of one path slot: both persistent sets and the scratch set (kernels/path_state.h).
+// Bytes of one path slot: both persistent sets and the scratch set (kernels/path_state.h), with
+// `real` fields of the double preset's 8 bytes: the largest, so the estimate holds for every preset.
 constexpr uint64_t path_slot_bytes() {
   uint64_t bytes = 0;
-#define CLPT_ADD_STATE(type, name, size, doc) bytes += 2 * (size);
-#define CLPT_ADD_SCRATCH(type, name, size, doc) bytes += (size);
+  constexpr uint64_t real_bytes = 8;
+#define CLPT_REAL_BYTES real_bytes
+#define CLPT_ADD_STATE(type, name, size, copied, doc) bytes += 2 * (size);
+#define CLPT_ADD_SCRATCH(type, name, size, copied, doc) bytes += (size);
   CLPT_PATH_STATE_FIELDS(CLPT_ADD_STATE)
   CLPT_PATH_SCRATCH_FIELDS(CLPT_ADD_SCRATCH)
 #undef CLPT_ADD_STATE
 #undef CLPT_ADD_SCRATCH
+#undef CLPT_REAL_BYTES
   return bytes;
 }
 

@@ -50,8 +50,8 @@ struct MemoryEstimate {
 
 // The buffers MegakernelRenderer / WavefrontRenderer allocate for `pixels` pixels and
 // `spheres` spheres: the sphere buffer (64 B each) and pass statistics (32 B per pixel of a
-// launch) for both; the wavefront adds paths_in_flight x 140 B of path state (two sets of 16
-// 4-byte fields, 3 scratch fields) and job results of 16 B per sample of a pass, with
+// launch) for both; the wavefront adds paths_in_flight x 256 B of path state (two sets of 17
+// fields, 3 scratch fields, at the double preset's sizes, the largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device);

@@ -13,9 +13,7 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
   kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
-  const size_t sphere_bytes = scene.spheres.size() * sizeof(GpuSphere);
-  spheres_ = Buffer(ctx, sphere_bytes, CL_MEM_READ_ONLY, "spheres");
-  ctx.write(spheres_, scene.spheres.data(), sphere_bytes);
+  upload_scene(ctx, scene, spheres_, lights_);
 }
 
 uint32_t MegakernelRenderer::max_samples_per_pass(uint32_t pixel_count) const {
@@ -29,8 +27,9 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
   const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
   kernel_.set_arg(0, spheres_);
-  kernel_.set_arg(1, params);
-  kernel_.set_arg(2, results_);
+  kernel_.set_arg(1, lights_);
+  kernel_.set_arg(2, params);
+  kernel_.set_arg(3, results_);
   film_.set_arg(0, params);
   film_.set_arg(1, results_);
   film_.set_arg(2, pass_);

@@ -32,7 +32,7 @@ class MegakernelRenderer : public Renderer {
   DeviceContext& ctx_;
   ProgramHandle program_;
   Kernel kernel_, film_;
-  Buffer spheres_;
+  Buffer spheres_, lights_;
   Buffer results_, pass_;
   size_t local_size_;
 };

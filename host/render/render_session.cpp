@@ -14,6 +14,7 @@
 #include "render/pass_loop.h"
 #include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
+#include "util/error.h"
 
 namespace clpt {
 namespace {
@@ -41,6 +42,7 @@ PoolSettings pool_settings(const RenderRequest& request, const DeviceScene& devi
   s.scene = &device_scene;
   s.features = request.generic_kernel ? generic_features(request.precision)
                                       : features_for_scene(scene, request.precision);
+  s.features.intersection = request.intersection;
   s.form = request.form;
   s.paths_in_flight = request.paths_in_flight;
   s.local_size = request.local_size;
@@ -67,6 +69,10 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.ray_epsilon = ds.ray_epsilon;
   p.pixel_begin = 0;
   p.pixel_count = p.width * p.height;
+  p.estimator = parse_estimator(s.estimator).value_or(Estimator::Book) == Estimator::Nee ? CLPT_ESTIMATOR_NEE
+                                                                                        : CLPT_ESTIMATOR_BOOK;
+  p.rr_from = s.rr_from >= 0 ? static_cast<clpt_u32>(s.rr_from) : CLPT_RR_NEVER;
+  p.light_count = static_cast<clpt_u32>(ds.lights.size());
   return p;
 }
 
@@ -80,6 +86,13 @@ std::unique_ptr<Renderer> make_renderer(ExecutionForm form, DeviceContext& ctx,
 
 const char* execution_form_name(ExecutionForm form) {
   return form == ExecutionForm::Wavefront ? "wavefront" : "megakernel";
+}
+
+void check_precision_supported(Precision precision, const DeviceInfo& device) {
+  if (precision == Precision::Double && !device.fp64)
+    throw Error(ExitCode::DeviceError, "--precision double: " + device.label() +
+                                      " does not report cl_khr_fp64 (no double precision); use "
+                                      "--precision robust, or another device (`clpt devices`)");
 }
 
 // CPUs (PoCL): the wavefront, whose loop-free stage kernels PoCL vectorises across work-items
@@ -110,6 +123,7 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   // 2. On each device a context and a kernel specialised for the scene, built in parallel.
   DevicePool pool(devices, pool_settings(request, device_scene));
+  report.precision = request.precision;
 
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
   Film film = request.resume ? *request.resume : Film(settings.width, settings.height);

@@ -24,6 +24,7 @@ struct RenderRequest {
   bool spp_given = true;     // false when only --time bounds the render
   bool show_progress = false;
   Precision precision = Precision::Robust;  // --precision
+  std::optional<Intersection> intersection;  // --intersection; unset: the preset's
   bool generic_kernel = false;  // compile every feature, not only what the scene needs
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
   std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
@@ -63,6 +64,7 @@ struct RenderReport {
   uint64_t segments = 0;
   uint64_t dropped = 0;        // samples with NaN/Inf radiance, excluded from the film
   ExecutionForm form = ExecutionForm::Megakernel;
+  Precision precision = Precision::Robust;
   uint32_t paths_in_flight = 0;  // wavefront only
   std::vector<StageTime> stage_times;
   std::shared_ptr<KernelCache> kernel_cache;  // the one used (null when off); hits() > 0: loaded
@@ -83,6 +85,9 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& device_scene)
 std::unique_ptr<Renderer> make_renderer(ExecutionForm form, DeviceContext& ctx,
                                         const DeviceScene& scene, const KernelFeatures& features,
                                         uint32_t paths_in_flight, size_t local_size);
+
+// Throws Error(Device) naming the device when it cannot run `precision` (double without fp64).
+void check_precision_supported(Precision precision, const DeviceInfo& device);
 
 // The execution form used when none is asked for on this device (README: "Execution forms").
 ExecutionForm default_form_for(const DeviceInfo& device);

@@ -15,4 +15,14 @@ ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
   return program;
 }
 
+void Renderer::upload_scene(DeviceContext& ctx, const DeviceScene& scene, Buffer& spheres, Buffer& lights) {
+  const size_t sphere_bytes = scene.spheres.size() * sizeof(GpuSphere);
+  spheres = Buffer(ctx, sphere_bytes, CL_MEM_READ_ONLY, "spheres");
+  ctx.write(spheres, scene.spheres.data(), sphere_bytes);
+  std::vector<GpuLight> entries = scene.lights;
+  if (entries.empty()) entries.push_back(GpuLight{});
+  lights = Buffer(ctx, entries.size() * sizeof(GpuLight), CL_MEM_READ_ONLY, "lights");
+  ctx.write(lights, entries.data(), entries.size() * sizeof(GpuLight));
+}
+
 }  // namespace clpt

@@ -8,6 +8,7 @@
 #include "cl/cl_context.h"
 #include "kernels/kernel_options.h"
 #include "kernels/types.h"
+#include "scene/device_scene.h"
 
 namespace clpt {
 
@@ -42,6 +43,10 @@ class Renderer {
   // Builds the program of `entry_file` (e.g. "megakernel.cl") specialised for `features`,
   // recording its build options and the build time (driver and clpt caches included).
   ProgramHandle build(DeviceContext& ctx, const std::string& entry_file, const KernelFeatures& features);
+
+  // The scene's sphere and light buffers (a light buffer is never empty: OpenCL has no
+  // zero-sized buffers; light_count in GpuRenderParams says how many entries count).
+  static void upload_scene(DeviceContext& ctx, const DeviceScene& scene, Buffer& spheres, Buffer& lights);
 
   double build_seconds_ = 0;
   std::string build_options_;

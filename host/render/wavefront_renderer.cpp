@@ -26,9 +26,11 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   compact_ = Kernel(program_.get(), "wf_compact", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
-  spheres_ = Buffer(ctx, scene.spheres.size() * sizeof(GpuSphere), CL_MEM_READ_ONLY, "spheres");
-  ctx.write(spheres_, scene.spheres.data(), scene.spheres.size() * sizeof(GpuSphere));
-#define CLPT_ALLOCATE(type, name, bytes, doc)                                                      \
+  upload_scene(ctx, scene, spheres_, lights_);
+  // `real` state fields are float, or double under the double preset.
+  const size_t real_bytes = features.precision == Precision::Double ? 8 : 4;
+#define CLPT_REAL_BYTES real_bytes
+#define CLPT_ALLOCATE(type, name, bytes, copied, doc)                                              \
   set->emplace_back(ctx, size_t(paths_) * (bytes), CL_MEM_READ_WRITE, "path state " #name);
   for (std::vector<Buffer>* set : {&state_, &next_state_}) {
     CLPT_PATH_STATE_FIELDS(CLPT_ALLOCATE)
@@ -38,6 +40,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
     CLPT_PATH_SCRATCH_FIELDS(CLPT_ALLOCATE)
   }
 #undef CLPT_ALLOCATE
+#undef CLPT_REAL_BYTES
   survivors_ = Buffer(ctx, sizeof(cl_uint), CL_MEM_READ_WRITE, "survivor count");
 }
 
@@ -89,10 +92,11 @@ void WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint3
   bind(intersect_, bind(intersect_, 3, scratch_), state_);
   record("intersect", ctx_.launch_profiled(intersect_, active, local_size_, "wf_intersect"));
   shade_.set_arg(0, spheres_);
-  shade_.set_arg(1, params);
-  shade_.set_arg(2, active);
-  shade_.set_arg(3, results_);
-  bind(shade_, bind(shade_, 4, scratch_), state_);
+  shade_.set_arg(1, lights_);
+  shade_.set_arg(2, params);
+  shade_.set_arg(3, active);
+  shade_.set_arg(4, results_);
+  bind(shade_, bind(shade_, 5, scratch_), state_);
   record("shade", ctx_.launch_profiled(shade_, active, local_size_, "wf_shade"));
 }
 

@@ -29,7 +29,7 @@ class WavefrontRenderer : public Renderer {
   uint32_t paths_in_flight() const { return paths_; }
 
   // GPUs: 16384 paths per compute unit, within [65536, 4M], enough to fill the lanes many times
-  // over. CPUs: 8192 per compute unit, so that the state (about 140 bytes a path) stays in cache
+  // over. CPUs: 8192 per compute unit, so that the state (about 150 bytes a path in float) stays in cache
   // while still amortising launch overhead (measured on PoCL: see README, "Speed").
   static uint32_t default_paths_in_flight(const DeviceInfo& device);
   static constexpr size_t kMaxJobBytes = size_t(256) << 20;
@@ -50,7 +50,7 @@ class WavefrontRenderer : public Renderer {
   size_t local_size_;
   ProgramHandle program_;
   Kernel generate_, intersect_, shade_, compact_, film_;
-  Buffer spheres_;
+  Buffer spheres_, lights_;
   std::vector<Buffer> state_, next_state_;  // one per CLPT_PATH_STATE_FIELDS entry, twice
   std::vector<Buffer> scratch_;               // one per CLPT_PATH_SCRATCH_FIELDS entry
   Buffer survivors_, results_, pass_;

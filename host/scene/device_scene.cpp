@@ -37,6 +37,45 @@ GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_positio
 
 }  // namespace
 
+std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling) {
+  const double pi = 3.14159265358979323846;
+  std::vector<GpuLight> lights;
+  for (size_t i = 0; i < scene.spheres.size(); ++i) {
+    const Sphere& a = scene.spheres[i];
+    if (a.material.type != MaterialType::Emitter) continue;
+    double one_minus_cos = 2;      // the whole sphere
+    Vec3 axis = {0, 1, 0};
+    bool hidden = false;
+    for (size_t j = 0; j < scene.spheres.size() && sampling == LightSampling::Cap; ++j) {
+      const Sphere& b = scene.spheres[j];
+      if (j == i) continue;
+      const Vec3 offset = sub(a.center, b.center);
+      const double d = length(offset);
+      if (d + a.radius <= b.radius) {  // a lies inside b: never seen
+        hidden = true;
+        break;
+      }
+      if (d >= a.radius + b.radius || d + b.radius <= a.radius) continue;  // b does not cut a
+      // Points of a at angle theta from the axis (from b's centre through a's) are outside b when
+      // 1 - cos(theta) < ((d + ra)^2 - rb^2) / (2 d ra), factored so that the walls' 1e5 radii
+      // do not cancel: (d + ra - rb)(d + ra + rb) / (2 d ra).
+      const double cut = (d + a.radius - b.radius) * (d + a.radius + b.radius) / (2 * d * a.radius);
+      if (cut < one_minus_cos) {
+        one_minus_cos = cut;
+        axis = scale(offset, 1.0 / d);
+      }
+    }
+    if (hidden || one_minus_cos <= 0) continue;
+    GpuLight light{};
+    store(light.cap_axis, axis);
+    light.sphere = static_cast<clpt_u32>(i);
+    light.one_minus_cos_cap = static_cast<float>(one_minus_cos);
+    light.cap_area = static_cast<float>(2 * pi * a.radius * a.radius * one_minus_cos);
+    lights.push_back(light);
+  }
+  return lights;
+}
+
 double ray_epsilon_for(const Camera& camera) {
   return 1e-5 * length(sub(camera.look_at, camera.position));
 }
@@ -45,6 +84,8 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height) {
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
+  out.lights = light_caps(scene, scene.settings.light_sampling == "sphere" ? LightSampling::Sphere
+                                                                            : LightSampling::Cap);
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
   const Vec3 dir = normalize(sub(cam.look_at, cam.position));

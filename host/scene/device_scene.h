@@ -11,6 +11,7 @@ namespace clpt {
 
 struct DeviceScene {
   std::vector<GpuSphere> spheres;
+  std::vector<GpuLight> lights;  // emitters that next-event estimation samples (light_caps())
   GpuCamera camera{};
   float ray_epsilon = 0;  // world units; see ray_epsilon_for()
 };
@@ -20,6 +21,18 @@ struct DeviceScene {
 // kernels see is of the size of distances inside the scene, never of a huge radius or a large
 // world coordinate.
 DeviceScene make_device_scene(const Scene& scene, int width, int height);
+
+// How next-event estimation samples an emitter (RenderSettings::light_sampling).
+//   Cap:    uniformly by area over the part of it that no other sphere hides, found as the
+//           smallest cap left outside any one other sphere (the default)
+//   Sphere: uniformly by area over the whole sphere (for comparison: README "Estimators")
+enum class LightSampling { Cap, Sphere };
+
+// The light entries for `scene`'s emitters, in double: an emitter entirely inside another sphere
+// can never be seen and gets none. The cap is where the light is sampled; points of the emitter
+// outside it are still lit by BSDF sampling, which the kernels weight accordingly, so any cap is
+// unbiased and a smaller one only wastes fewer shadow rays.
+std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling);
 
 // Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
 // the value numerics.md measured as robust there), so it scales with the scene.

@@ -61,6 +61,7 @@ struct RenderSettings {
   Sampler sampler = Sampler::Jitter;
   std::string estimator = "book";  // "book" | "nee" (kernels/kernel_options.h: Estimator)
   int rr_from = -1;                // Russian roulette from this bounce on; -1: none
+  std::string light_sampling = "cap";  // "cap" | "sphere" (scene/device_scene.h: LightSampling)
 };
 
 struct Scene {

@@ -310,12 +310,14 @@ Sampler parse_sampler(const TableReader& render, const std::string& name) {
 }
 
 void read_render(const TableReader& render, RenderSettings& settings) {
-  render.reject_unknown_keys({"spp", "seed", "max_bounces", "sampler", "estimator"});
+  render.reject_unknown_keys({"spp", "seed", "max_bounces", "sampler", "estimator", "rr_from", "light_sampling"});
   read_integer_setting(render, "spp", settings.spp);
   read_integer_setting(render, "seed", settings.seed);
   read_integer_setting(render, "max_bounces", settings.max_bounces);
   if (const auto name = render.string("sampler")) settings.sampler = parse_sampler(render, *name);
   if (const auto estimator = render.string("estimator")) settings.estimator = *estimator;
+  read_integer_setting(render, "rr_from", settings.rr_from);
+  if (const auto sampling = render.string("light_sampling")) settings.light_sampling = *sampling;
 }
 
 void read_camera(const TableReader& camera_table, Camera& camera) {

@@ -148,9 +148,12 @@ void check_settings(const RenderSettings& settings, const SourceMap& sources) {
     fail_at(sources, "render.spp",
             "the grid sampler needs spp to be a multiple of 16 (got " +
                 std::to_string(settings.spp) + ")");
-  if (settings.estimator != "book")
+  if (settings.estimator != "book" && settings.estimator != "nee")
     fail_at(sources, "render.estimator",
-            "unknown estimator '" + settings.estimator + "' (only 'book' is supported)");
+            "unknown estimator '" + settings.estimator + "' (expected 'book' or 'nee')");
+  if (settings.light_sampling != "cap" && settings.light_sampling != "sphere")
+    fail_at(sources, "render.light_sampling",
+            "unknown light sampling '" + settings.light_sampling + "' (expected 'cap' or 'sphere')");
 }
 
 void require_emitter(const Scene& scene, const SourceMap& sources) {
@@ -169,7 +172,7 @@ struct IntegerRule {
 constexpr int64_t kNoLimit = std::numeric_limits<int64_t>::max();
 constexpr IntegerRule kIntegerRules[] = {
     {"image.width", 1, 16384},    {"image.height", 1, 16384},      {"render.spp", 1, 1000000000},
-    {"render.seed", 0, kNoLimit}, {"render.max_bounces", 0, 1000},
+    {"render.seed", 0, kNoLimit}, {"render.max_bounces", 0, 1000}, {"render.rr_from", 0, 1000},
 };
 
 }  // namespace
