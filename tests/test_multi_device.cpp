@@ -4,6 +4,7 @@
 // which device traced a range changes no pixel: the films must be equal, not merely close.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -116,12 +117,14 @@ TEST(MultiDeviceIdentical, EveryDeviceFailingFailsTheRender) {
 // paths/s while busy and b_i its busy time, so the two shares differ only as far as the busy
 // times differ, i.e. as far as a device idled while another finished a pass; the balancing
 // keeps that to the pass tails, where ranges shrink to each device's share of what is left.
-// Hence two checks. (1) Each device is busy for at least 80% of the passes' wall time: what idle
-// remains is the tails and the first launch (PoCL compiles each kernel of each device at its
-// first launch; a warm-up render first makes that a load from PoCL's cache); a split fixed in
-// advance left the faster device idle for 30% of the render here (measured). (2) The
-// shares agree within 0.1: with busy times within 20% of each other, the share of a device at
-// 0.5 can differ from its throughput share by at most 0.5 x 0.2 = 0.1.
+// Hence two checks. (1) The busy times are within 20% of each other (the shorter at least 0.8 of
+// the longer): the balancing leaves only the pass tails and the first launches (PoCL compiles
+// each kernel of each device at its first launch; a warm-up render first makes that a load from
+// PoCL's cache) to one device alone. A split fixed in advance, tried by changing the scheduler,
+// gave 0.70-0.73 here (measured), the faster device waiting at every pass end. Idle time common
+// to both devices (the host between passes, a loaded machine) does not enter this ratio, nor the
+// shares. (2) Each device's share is within 0.1 of its throughput share (measured differences
+// 0.002-0.04); with busy times within 20%, share_i / throughput share_i lies in [0.8, 1.25].
 TEST(MultiDeviceMixed, SharesFollowThroughput) {
   require_two_devices();
   RenderRequest request;
@@ -143,18 +146,20 @@ TEST(MultiDeviceMixed, SharesFollowThroughput) {
   const Film film = run_render(request, report);
   ASSERT_EQ(film.samples_per_pixel(), 128u);
   ASSERT_EQ(report.devices.size(), 2u);
-  double rate_sum = 0;
+  double rate_sum = 0, busy_min = 1e300, busy_max = 0;
   for (const DeviceShare& d : report.devices) {
     ASSERT_GT(d.busy_seconds, 0) << d.device << " did no work";
     rate_sum += double(d.paths) / d.busy_seconds;
+    busy_min = std::min(busy_min, d.busy_seconds);
+    busy_max = std::max(busy_max, d.busy_seconds);
   }
+  EXPECT_GE(busy_min, 0.8 * busy_max) << "one device idled while the other worked";
   for (const DeviceShare& d : report.devices) {
     const double share = double(d.paths) / double(report.paths);
     const double throughput_share = double(d.paths) / d.busy_seconds / rate_sum;
     std::printf("%s: share %.3f, throughput share %.3f, busy %.2f of %.2f s\n", d.device.c_str(), share,
                 throughput_share, d.busy_seconds, report.render_seconds);
     EXPECT_GT(share, 0.05) << d.device << " got (almost) no work";
-    EXPECT_GE(d.busy_seconds, 0.8 * report.render_seconds) << d.device << " idled";
     EXPECT_NEAR(share, throughput_share, 0.1) << d.device;
   }
 }
