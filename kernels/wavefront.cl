@@ -6,8 +6,8 @@
  *   wf_generate   slots [active, active + fresh) <- new camera paths for the pass's next jobs
  *   wf_intersect  active paths -> hit_t, hit_sphere
  *   wf_shade      active paths -> emission, next ray or end; an ended path leaves its radiance in
- *                 its job's result slot
- *   wf_compact    surviving paths copied densely into the other state set (atomic appends)
+ *                 its job's result slot, a surviving one is stored densely into the other state
+ *                 set (atomic appends): shading and compaction in one pass
  *   film_sum_jobs every pixel -> GpuPixelPass, summing its samples in sample order (film.cl)
  * The physics is path.cl's: these kernels only load a PathState, call the same stage function
  * as the megakernel, and store it. Job j of a pass is sample (sample_begin + j / pixel_count) of
@@ -18,16 +18,16 @@
 #include "path.cl"
 #include "film.cl"
 
-#define CLPT_STATE_PARAM(type, name, bytes, copied, doc) , __global type* name
+#define CLPT_STATE_PARAM(type, name, bytes, doc) , __global type* name
 #define CLPT_STATE_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_STATE_PARAM)
 #define CLPT_SCRATCH_PARAMS CLPT_PATH_SCRATCH_FIELDS(CLPT_STATE_PARAM)
-#define CLPT_STATE_NAME(type, name, bytes, copied, doc) , name
+#define CLPT_STATE_NAME(type, name, bytes, doc) , name
 #define CLPT_STATE_ARGS CLPT_PATH_STATE_FIELDS(CLPT_STATE_NAME)
 /* The compaction's destination set: the same fields with a `to_` prefix. */
-#define CLPT_TO_PARAM(type, name, bytes, copied, doc) , __global type* to_##name
+#define CLPT_TO_PARAM(type, name, bytes, doc) , __global type* to_##name
 #define CLPT_TO_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_TO_PARAM)
-#define CLPT_COPY_FIELD(type, name, bytes, copied, doc) \
-  if (copied) to_##name[to] = name[from];
+#define CLPT_TO_NAME(type, name, bytes, doc) , to_##name
+#define CLPT_TO_ARGS CLPT_PATH_STATE_FIELDS(CLPT_TO_NAME)
 
 CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_STATE_PARAMS) {
   PathState p;
@@ -87,43 +87,49 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderPar
   hit_sphere[i] = hit.sphere;
 }
 
-/* Ended paths write their job's result (job_result_store, film.cl). */
+/* Shading and compaction in one pass: every active path is shaded; an ended path writes its
+ * job's result (job_result_store, film.cl) and a surviving one is stored densely into the other
+ * state set. Storing the shaded path straight into its compacted slot costs the same as storing
+ * it in place, and saves a separate compaction kernel re-reading and re-writing every survivor
+ * (measured on PoCL: that kernel took as long as intersection and shading together).
+ * Slots are reserved once per work-group: one global atomic per path made the cores fight over
+ * the counter's cache line. The shading region holds no atomic and no store to a shared address,
+ * so PoCL still vectorises it across work-items; work-item 0 then ranks the group's survivors
+ * serially (a work-group is at most CLPT_WAVEFRONT_GROUP) and reserves their slots.
+ * No work-item returns early, since every one must reach the barriers: the work-items past
+ * `count` shade a copy of slot 0 and store nothing. */
+#ifndef CLPT_WAVEFRONT_GROUP
+#define CLPT_WAVEFRONT_GROUP 1024
+#endif
 __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
-                       const GpuRenderParams params, uint count,
-                       __global float* results CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
-  const uint i = (uint)get_global_id(0);
-  if (i >= count) return;
-  PathState p = path_load(i, &params CLPT_STATE_ARGS);
-  Hit hit;
-  hit.t = hit_t[i];
-  hit.sphere = hit_sphere[i];
-  path_shade(&p, hit, spheres, lights, &params);
-  const uint job_index = job[i];
-  path_store(i, job_index, &p CLPT_STATE_ARGS);
-  alive[i] = p.alive;
-  if (!p.alive) job_result_store(results, job_index, p.radiance, p.segments);
-}
-
-/* Copies every surviving path to the next free slot of the other set; *survivors counts them.
- * Slots are reserved per work-group (one global atomic per group, local atomics inside it): one
- * global atomic per path made the cores fight over the counter's cache line (measured on PoCL:
- * compaction took 4x as long as intersection and shading together). No work-item returns early,
- * since every one must reach the barriers. */
-__kernel void wf_compact(uint count, __global volatile uint* survivors
-                             CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
-  __local volatile uint group_count;
+                       const GpuRenderParams params, uint count, __global float* results,
+                       __global volatile uint* survivors CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
+  __local uint rank_of[CLPT_WAVEFRONT_GROUP]; /* survives (0/1), then the survivor's rank */
   __local uint group_base;
-  const uint from = (uint)get_global_id(0);
-  const bool survives = from < count && alive[from];
-  if (get_local_id(0) == 0) group_count = 0u;
+  const uint i = (uint)get_global_id(0);
+  const uint lid = (uint)get_local_id(0);
+  const bool active = i < count;
+  const uint slot = active ? i : 0u;
+  PathState p = path_load(slot, &params CLPT_STATE_ARGS);
+  Hit hit;
+  hit.t = hit_t[slot];
+  hit.sphere = hit_sphere[slot];
+  path_shade(&p, hit, spheres, lights, &params);
+  const uint job_index = job[slot];
+  if (active && !p.alive) job_result_store(results, job_index, p.radiance, p.segments);
+  const bool survives = active && p.alive;
+  rank_of[lid] = survives ? 1u : 0u;
   barrier(CLK_LOCAL_MEM_FENCE);
-  const uint rank = survives ? atomic_inc(&group_count) : 0u;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (get_local_id(0) == 0) group_base = atomic_add(survivors, group_count);
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (survives) {
-    const uint to = group_base + rank;
-    CLPT_PATH_STATE_FIELDS(CLPT_COPY_FIELD)
+  if (lid == 0u) {
+    uint n = 0u;
+    const uint size = (uint)get_local_size(0);
+    for (uint k = 0u; k < size; ++k) {
+      const uint s = rank_of[k];
+      rank_of[k] = n;
+      n += s;
+    }
+    group_base = atomic_add(survivors, n);
   }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (survives) path_store(group_base + rank_of[lid], job_index, &p CLPT_TO_ARGS);
 }
-

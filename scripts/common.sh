@@ -6,7 +6,7 @@ CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
 
 # What each package is for is in README.md ("Dependencies").
 CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
-               libopenimageio-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev)
+               libopenimageio-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
 CLPT_TEST_PACKAGES=(libgtest-dev)
 # scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries).
 CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev)

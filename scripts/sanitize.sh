@@ -15,7 +15,7 @@ cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCLPT_SANITIZE=ON \
 # Only what the unit and bad-input tests run: the sanitized build compiles slowly, and the stat
 # and cross-device executables are not run here. A new executable carrying the unit label must be
 # added to this list (or to CLPT_ASAN_TARGETS), else its tests are silently not built.
-read -r -a targets <<<"${CLPT_ASAN_TARGETS:-clpt clpt_unit_tests}"
+read -r -a targets <<<"${CLPT_ASAN_TARGETS:-clpt clpt_unit_tests clpt_extremes_unit_tests}"
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
 # LeakSanitizer stays on for clpt's own code, but the OpenCL driver is loaded into the process

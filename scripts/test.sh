@@ -8,7 +8,13 @@ clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}" "${CLPT_FU
 clpt_build -DCLPT_BUILD_TESTS=ON
 "$CLPT_BUILD/clpt" devices
 cd "$CLPT_BUILD"
-ctest --output-on-failure -j "$(nproc)" "$@"
+# Without arguments: everything but the preset x extreme matrix (label `extremes`, a few
+# minutes; scripts/extremes.sh runs it, or scripts/test.sh -L extremes).
+if [[ $# -eq 0 ]]; then
+  ctest --output-on-failure -j "$(nproc)" --label-exclude extremes
+else
+  ctest --output-on-failure -j "$(nproc)" "$@"
+fi
 # The whole suite (no ctest arguments) goes on with 40 s fuzz runs of the scene loader and the
 # option parser, then the unit and bad-input tests under ASan + UBSan, each in its own build
 # directory (about 6 minutes more on 2 cores).

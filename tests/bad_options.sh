@@ -45,6 +45,13 @@ expect 2 "-o out.jpg: the output must be an .exr" -- render "$scene" -o out.jpg
 expect 2 "does not exist" -- render "$scene" -o no/such/dir/out.exr
 expect 3 "missing.toml: cannot open scene file" -- render missing.toml -o out.exr
 expect 2 "subcommand" -- frobnicate
+expect 2 "--precision" -- render "$scene" --precision quad -o out.exr
+expect 2 "--estimator" -- render "$scene" --estimator bdpt -o out.exr
+expect 2 "--rr-from" -- render "$scene" --rr-from -1 -o out.exr
+expect 2 "--intersection" -- render "$scene" --intersection exact -o out.exr
+expect 2 "--light-sampling" -- render "$scene" --light-sampling cone -o out.exr
+# A device without fp64 (CLPT_HIDE_FP64 hides PoCL's) refuses the double preset, naming it.
+CLPT_HIDE_FP64=1 expect 4 "--precision double: device '" -- render "$scene" --precision double --spp 16 --width 8 --height 8 -o out.exr
 
 # Limits, checked before anything is allocated (so they fail fast), and --resume. Their inputs
 # live beside WORK_DIR, which must stay empty.

@@ -15,7 +15,7 @@ import json, sys
 doc = json.load(open(sys.argv[1]))
 rows = doc["rows"]
 assert len(rows) == 2, rows
-fields = {"key", "scene", "form", "kernel", "device", "local_size", "paths_in_flight", "build_cold_s",
+fields = {"key", "scene", "form", "kernel", "precision", "estimator", "device", "local_size", "paths_in_flight", "build_cold_s",
           "build_cached_s", "paths_per_s", "segments_per_s", "stage_seconds"}
 for r in rows:
     missing = fields - r.keys()
@@ -23,7 +23,7 @@ for r in rows:
     for s in ("paths_per_s", "segments_per_s"):
         assert r[s]["min"] <= r[s]["median"] <= r[s]["max"] and r[s]["median"] > 0, r[s]
 wf = [r for r in rows if r["form"] == "wavefront"][0]
-assert {"generate", "intersect", "shade", "compact", "film"} <= wf["stage_seconds"].keys(), wf
+assert {"generate", "intersect", "shade", "film"} <= wf["stage_seconds"].keys(), wf
 # A baseline 1000 times faster than measured: every row must be a regression, however noisy
 # the machine (a timing ratio of 1000 cannot come from load).
 for r in rows:

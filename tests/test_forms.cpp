@@ -1,6 +1,6 @@
 // Execution forms and kernel variants agree on the same device and seed: the megakernel and the
 // wavefront (with few or many paths in flight), and the scene-specialised and generic kernels,
-// give the same image up to float rounding (a different contraction of a*b+c can send a rare path
+// give the same image up to float rounding, as do two work-group sizes (a different contraction of a*b+c can send a rare path
 // elsewhere, hence the 99% criterion rather than 100%).
 #include <gtest/gtest.h>
 
@@ -16,6 +16,7 @@ struct Variant {
   ExecutionForm form = ExecutionForm::Megakernel;
   uint32_t paths_in_flight = 0;
   bool generic = false;
+  size_t local_size = 0;  // 0: the form's default
 };
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
@@ -32,6 +33,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
   request.form = v.form;
   request.paths_in_flight = v.paths_in_flight;
   request.generic_kernel = v.generic;
+  request.local_size = v.local_size;
   RenderReport report;
   return run_render(request, report).mean_rgb();
 }
@@ -65,6 +67,13 @@ TEST_P(FormsAgree, WavefrontWith64PathsInFlightEqualsDefault) {
 TEST_P(FormsAgree, SpecialisedKernelEqualsGeneric) {
   expect_same_image(render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false}),
                     render_variant(GetParam(), {ExecutionForm::Megakernel, 0, true}));
+}
+
+TEST_P(FormsAgree, TwoWorkGroupSizesGiveTheSameImage) {
+  expect_same_image(render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 8}),
+                    render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 64}));
+  expect_same_image(render_variant(GetParam(), {ExecutionForm::Wavefront, 0, false, 32}),
+                    render_variant(GetParam(), {ExecutionForm::Wavefront, 0, false, 128}));
 }
 
 INSTANTIATE_TEST_SUITE_P(BookScenes, FormsAgree, ::testing::Values("diffuse", "specular", "glass"));

@@ -15,6 +15,7 @@ struct BenchOptions {
   std::vector<std::string> scenes = {"scenes/diffuse.toml"};
   std::vector<std::string> forms = {"megakernel", "wavefront"};
   std::vector<std::string> kernels = {"specialised"};
+  std::vector<std::string> precisions = {"robust"};
   std::string json, baseline;
   double tolerance = 10;
 };
@@ -25,6 +26,8 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.generic.clear();
   for (const std::string& k : o.kernels) config.generic.push_back(k == "generic");
   config.scenes = o.scenes;
+  config.precisions.clear();
+  for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
   if (config.devices.empty()) config.devices = {"best"};
   const std::vector<BenchRow> rows = run_bench(config, true);
   std::printf("%s", bench_table(rows).c_str());
@@ -41,12 +44,17 @@ int run(BenchConfig config, const BenchOptions& o) {
 std::function<int()> add_bench_command(CLI::App& app) {
   auto config = std::make_shared<BenchConfig>();
   auto o = std::make_shared<BenchOptions>();
-  CLI::App* cmd = app.add_subcommand("bench", "Benchmark scene x form x kernel x device x work-group size");
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Benchmark scene x form x kernel x precision x estimator x device x work-group size");
   cmd->add_option("--scenes", o->scenes, "Scene files (default: scenes/diffuse.toml)")->delimiter(',');
   cmd->add_option("--forms", o->forms, "megakernel,wavefront")
       ->delimiter(',')->check(CLI::IsMember({"megakernel", "wavefront"}));
   cmd->add_option("--kernels", o->kernels, "specialised,generic")
       ->delimiter(',')->check(CLI::IsMember({"specialised", "generic"}));
+  cmd->add_option("--precisions", o->precisions, "fast,robust,double (default: robust)")
+      ->delimiter(',')->check(CLI::IsMember({"fast", "robust", "double"}));
+  cmd->add_option("--estimators", config->estimators, "book,nee (default: the scene's)")
+      ->delimiter(',')->check(CLI::IsMember({"book", "nee"}));
   cmd->add_option("--devices", config->devices, "Device specs as for render --device, or all (default: best)")
       ->delimiter(',');
   cmd->add_option("--local-sizes", config->local_sizes, "Work-group sizes, 0 = the form's default")

@@ -13,6 +13,7 @@
 #include "render/film_raw.h"
 #include "render/limits.h"
 #include "render/render_session.h"
+#include "scene/precision_range.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
 #include "util/interrupt.h"
@@ -230,6 +231,10 @@ int run(const RenderOptions& o) {
   request.launch_target_s = o.launch_ms / 1000;
   RenderReport report;
   request.scene = scene;
+  // Scenes beyond what the extreme-scene tests proved for this preset (README "Numerical extremes").
+  if (!o.quiet)
+    for (const std::string& warning : precision_range_warnings(scene, request.precision))
+      std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
   prepare_resume_and_checkpoints(o, scene, request);
   install_interrupt_handlers();
   request.interrupt = &interrupt_flag();

@@ -123,6 +123,12 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << (features.sphere_count > 0 ? "unrolled for the scene's " + std::to_string(features.sphere_count) + " spheres"
                                   : std::string("run-time sphere count (generic kernel)"))
     << "\n";
+  if (!features.generic && features.estimator == Estimator::Nee)
+    o << "  light loop: "
+      << (features.light_count >= 0 ? "unrolled for the scene's " + std::to_string(features.light_count) +
+                                          " sampled light(s)"
+                                    : std::string("run-time light count"))
+      << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

@@ -18,8 +18,8 @@ constexpr uint64_t path_slot_bytes() {
   uint64_t bytes = 0;
   constexpr uint64_t real_bytes = 8;
 #define CLPT_REAL_BYTES real_bytes
-#define CLPT_ADD_STATE(type, name, size, copied, doc) bytes += 2 * (size);
-#define CLPT_ADD_SCRATCH(type, name, size, copied, doc) bytes += (size);
+#define CLPT_ADD_STATE(type, name, size, doc) bytes += 2 * (size);
+#define CLPT_ADD_SCRATCH(type, name, size, doc) bytes += (size);
   CLPT_PATH_STATE_FIELDS(CLPT_ADD_STATE)
   CLPT_PATH_SCRATCH_FIELDS(CLPT_ADD_SCRATCH)
 #undef CLPT_ADD_STATE

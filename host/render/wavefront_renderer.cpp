@@ -4,6 +4,7 @@
 
 #include "kernels/path_state.h"
 #include "render/limits.h"
+#include "util/error.h"
 
 namespace clpt {
 uint32_t WavefrontRenderer::default_paths_in_flight(const DeviceInfo& device) {
@@ -19,18 +20,20 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
       // A fixed work-group size: the number of active paths changes every launch, and a driver left
       // to choose would pick (and PoCL would compile a kernel variant for) a new size each time.
       local_size_(local_size ? local_size : kDefaultLocalSize) {
+  if (local_size_ > kMaxLocalSize)
+    throw Error(ExitCode::Usage, "--local-size " + std::to_string(local_size_) + ": the wavefront's work-groups hold at most " +
+                                     std::to_string(kMaxLocalSize) + " work-items");
   program_ = build(ctx, "wavefront.cl", features);
   generate_ = Kernel(program_.get(), "wf_generate", ctx.where());
   intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where());
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());
-  compact_ = Kernel(program_.get(), "wf_compact", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
   upload_scene(ctx, scene, spheres_, lights_);
   // `real` state fields are float, or double under the double preset.
   const size_t real_bytes = features.precision == Precision::Double ? 8 : 4;
 #define CLPT_REAL_BYTES real_bytes
-#define CLPT_ALLOCATE(type, name, bytes, copied, doc)                                              \
+#define CLPT_ALLOCATE(type, name, bytes, doc)                                              \
   set->emplace_back(ctx, size_t(paths_) * (bytes), CL_MEM_READ_WRITE, "path state " #name);
   for (std::vector<Buffer>* set : {&state_, &next_state_}) {
     CLPT_PATH_STATE_FIELDS(CLPT_ALLOCATE)
@@ -74,7 +77,7 @@ std::vector<StageTime> WavefrontRenderer::stage_times() const {
 }
 
 // Kernel arguments follow wavefront.cl: each kernel's own arguments, then scratch, then state
-// (and, for compaction, the destination state).
+// (and, for shading, the destination state of the survivors).
 void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_begin,
                                  uint32_t slot_begin, uint32_t count) {
   generate_.set_arg(0, params);
@@ -85,29 +88,24 @@ void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_beg
   record("generate", ctx_.launch_profiled(generate_, count, local_size_, "wf_generate"));
 }
 
-void WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint32_t active) {
+// Closest hits, then shading, which stores the survivors densely into the other state set; swaps
+// the sets and returns the number of survivors.
+uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint32_t active) {
   intersect_.set_arg(0, spheres_);
   intersect_.set_arg(1, params);
   intersect_.set_arg(2, active);
   bind(intersect_, bind(intersect_, 3, scratch_), state_);
   record("intersect", ctx_.launch_profiled(intersect_, active, local_size_, "wf_intersect"));
+  const cl_uint zero = 0;
+  ctx_.write_async(survivors_, &zero, sizeof zero);
   shade_.set_arg(0, spheres_);
   shade_.set_arg(1, lights_);
   shade_.set_arg(2, params);
   shade_.set_arg(3, active);
   shade_.set_arg(4, results_);
-  bind(shade_, bind(shade_, 5, scratch_), state_);
+  shade_.set_arg(5, survivors_);
+  bind(shade_, bind(shade_, bind(shade_, 6, scratch_), state_), next_state_);
   record("shade", ctx_.launch_profiled(shade_, active, local_size_, "wf_shade"));
-}
-
-// Copies the survivors densely into the other state set, swaps the sets, returns their number.
-uint32_t WavefrontRenderer::compact(uint32_t active) {
-  const cl_uint zero = 0;
-  ctx_.write_async(survivors_, &zero, sizeof zero);
-  compact_.set_arg(0, active);
-  compact_.set_arg(1, survivors_);
-  bind(compact_, bind(compact_, bind(compact_, 2, scratch_), state_), next_state_);
-  record("compact", ctx_.launch_profiled(compact_, active, local_size_, "wf_compact"));
   cl_uint survivors = 0;
   ctx_.read(survivors_, &survivors, sizeof survivors);  // blocking: `zero` lives until here
   collect_times();
@@ -128,10 +126,9 @@ std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& 
     if (fresh > 0) generate(params, static_cast<uint32_t>(next_job), active, fresh);
     next_job += fresh;
     active += fresh;
-    // 2. Closest hits, then shading: emission, scattering, or the end of the path.
-    intersect_and_shade(params, active);
-    // 3. Compaction: the survivors move to the front of the other set.
-    active = compact(active);
+    // 2. Closest hits, then shading: emission, scattering, or the end of the path; the
+    //    survivors move to the front of the other set.
+    active = intersect_and_shade(params, active);
   }
 
   // 4. Film: each pixel's samples summed in sample order.

@@ -1,6 +1,6 @@
 // The split wavefront execution form (kernels/wavefront.cl): a pool of path slots in
 // structure-of-arrays buffers, one kernel per stage over the densely packed active paths,
-// compaction into a second set of buffers after shading, and freed slots refilled with the pass's
+// shading storing the survivors densely into a second set of buffers, and freed slots refilled with the pass's
 // next samples until every sample of the pass is done.
 #pragma once
 
@@ -34,6 +34,8 @@ class WavefrontRenderer : public Renderer {
   static uint32_t default_paths_in_flight(const DeviceInfo& device);
   static constexpr size_t kMaxJobBytes = size_t(256) << 20;
   static constexpr size_t kDefaultLocalSize = 64;
+  // wf_shade ranks a work-group's survivors in local memory sized for this many (wavefront.cl).
+  static constexpr size_t kMaxLocalSize = 1024;
 
  private:
   // Binds a set of state buffers to consecutive arguments from first_index; returns the next index.
@@ -42,14 +44,13 @@ class WavefrontRenderer : public Renderer {
   void record(const char* label, EventHandle event);
   void collect_times();
   void generate(const GpuRenderParams& params, uint32_t job_begin, uint32_t slot_begin, uint32_t count);
-  void intersect_and_shade(const GpuRenderParams& params, uint32_t active);
-  uint32_t compact(uint32_t active);
+  uint32_t intersect_and_shade(const GpuRenderParams& params, uint32_t active);
 
   DeviceContext& ctx_;
   uint32_t paths_;
   size_t local_size_;
   ProgramHandle program_;
-  Kernel generate_, intersect_, shade_, compact_, film_;
+  Kernel generate_, intersect_, shade_, film_;
   Buffer spheres_, lights_;
   std::vector<Buffer> state_, next_state_;  // one per CLPT_PATH_STATE_FIELDS entry, twice
   std::vector<Buffer> scratch_;               // one per CLPT_PATH_SCRATCH_FIELDS entry

@@ -46,15 +46,17 @@ std::vector<const DeviceInfo*> resolve_devices(const std::vector<std::string>& s
 
 // One matrix cell: builds (cold, then cached), warms up, times `repeat` runs.
 BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx, ExecutionForm form,
-                    bool generic, size_t local_size) {
+                    bool generic, Precision precision, size_t local_size) {
   BenchRow row;
   row.scene = scene.file;
   row.form = execution_form_name(form);
   row.kernel = generic ? "generic" : "specialised";
+  row.precision = precision_name(precision);
+  row.estimator = scene.settings.estimator;
   row.device = ctx.device().name;
   row.local_size = local_size;
   const DeviceScene ds = make_device_scene(scene, c.width, c.height);
-  KernelFeatures features = generic ? generic_features() : features_for_scene(scene);
+  KernelFeatures features = generic ? generic_features(precision) : features_for_scene(scene, precision);
 
   // Cold: options no driver cache has seen. Cached: the same build twice, the second timed.
   features.build_nonce = std::random_device{}() | 1u;
@@ -100,7 +102,8 @@ std::string format_rate(const Spread& s) {
 }  // namespace
 
 std::string BenchRow::key() const {
-  return scene + "|" + form + "|" + kernel + "|" + device + "|" + std::to_string(local_size);
+  return scene + "|" + form + "|" + kernel + "|" + precision + "|" + estimator + "|" + device + "|" +
+         std::to_string(local_size);
 }
 
 std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
@@ -108,21 +111,29 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
   std::vector<BenchRow> rows;
   for (const DeviceInfo* device : resolve_devices(c.devices, all)) {
     DeviceContext ctx(*device);
-    for (const std::string& file : c.scenes) {
-      Scene scene = load_scene_file(file);
-      scene.settings.width = c.width;
-      scene.settings.height = c.height;
-      scene.settings.sampler = Sampler::Jitter;
-      for (ExecutionForm form : c.forms)
-        for (bool generic : c.generic)
-          for (size_t local_size : c.local_sizes) {
-            if (show_progress)
-              std::fprintf(stderr, "bench: %s, %s, %s kernel, local size %zu, %s\n", file.c_str(),
-                           execution_form_name(form), generic ? "generic" : "specialised",
-                           local_size, device->name.c_str());
-            rows.push_back(bench_cell(c, scene, ctx, form, generic, local_size));
+    for (const std::string& file : c.scenes)
+      for (const std::string& estimator : c.estimators) {
+        Scene scene = load_scene_file(file);
+        scene.settings.width = c.width;
+        scene.settings.height = c.height;
+        scene.settings.sampler = Sampler::Jitter;
+        if (!estimator.empty()) scene.settings.estimator = estimator;
+        for (Precision precision : c.precisions) {
+          if (precision == Precision::Double && !device->fp64) {
+            std::fprintf(stderr, "bench: skipping --precisions double on %s: no cl_khr_fp64\n", device->label().c_str());
+            continue;
           }
-    }
+          for (ExecutionForm form : c.forms)
+            for (bool generic : c.generic)
+              for (size_t local_size : c.local_sizes) {
+                if (show_progress)
+                  std::fprintf(stderr, "bench: %s, %s, %s, %s, %s kernel, local size %zu, %s\n", file.c_str(),
+                               scene.settings.estimator.c_str(), precision_name(precision), execution_form_name(form),
+                               generic ? "generic" : "specialised", local_size, device->name.c_str());
+                rows.push_back(bench_cell(c, scene, ctx, form, generic, precision, local_size));
+              }
+        }
+      }
   }
   return rows;
 }
@@ -130,15 +141,15 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
-                "kernel", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
+  std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
+                "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
                 "build cold/cached s", "device");
   o << line;
   for (const BenchRow& r : rows) {
     char build[32];
     std::snprintf(build, sizeof build, "%.2f/%.2f", r.build_cold_s, r.build_cached_s);
-    std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
-                  r.form.c_str(), r.kernel.c_str(),
+    std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
+                  r.form.c_str(), r.kernel.c_str(), r.precision.c_str(), r.estimator.c_str(),
                   r.local_size ? std::to_string(r.local_size).c_str() : "auto",
                   format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), build,
                   r.device.c_str());
@@ -168,7 +179,8 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
       return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max}};
     };
     j["rows"].push_back({{"key", r.key()}, {"scene", r.scene}, {"form", r.form},
-                         {"kernel", r.kernel}, {"device", r.device}, {"local_size", r.local_size},
+                         {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
+                         {"device", r.device}, {"local_size", r.local_size},
                          {"paths_in_flight", r.paths_in_flight},
                          {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
                          {"paths_per_s", spread(r.paths_per_s)},

@@ -1,5 +1,5 @@
-// `clpt bench`: a matrix of scene x execution form x kernel (specialised or generic) x device x
-// work-group size, each with cold and cached kernel build times, warm-up and repeated timed
+// `clpt bench`: a matrix of scene x execution form x kernel (specialised or generic) x precision
+// preset x estimator x device x work-group size, each with cold and cached kernel build times, warm-up and repeated timed
 // passes (median and spread of paths/s and ray segments/s), and per-stage device time of the
 // wavefront from OpenCL profiling events. The same renderers as `clpt render`, nothing else.
 #pragma once
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/kernel_options.h"
 #include "render/renderer.h"
 
 namespace clpt {
@@ -17,6 +18,8 @@ struct BenchConfig {
   std::vector<std::string> devices;            // --device values; "all" expands to every device
   std::vector<size_t> local_sizes = {0};       // 0: the form's default
   std::vector<bool> generic = {false};         // false: specialised kernel, true: generic
+  std::vector<Precision> precisions = {Precision::Robust};
+  std::vector<std::string> estimators = {""};  // "book", "nee"; "": the scene's
   int width = 320, height = 240;
   uint32_t spp = 16;                           // samples per pixel of one timed run
   int warmup = 1, repeat = 5;
@@ -28,7 +31,7 @@ struct Spread {
 };
 
 struct BenchRow {
-  std::string scene, form, kernel, device;
+  std::string scene, form, kernel, precision, estimator, device;
   size_t local_size = 0;
   uint32_t paths_in_flight = 0;
   double build_cold_s = 0, build_cached_s = 0;
