@@ -1,9 +1,8 @@
 /* film.cl: per-pixel statistics of one pass.
  *
  * The paths of a launch leave their results per job; film_sum_jobs then gives each pixel to one
- * work-item, which sums its samples in `real` (float, or double under the double preset; a pass
- * holds at most a few thousand samples, so a float sum loses nothing that matters) and writes,
- * not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
+ * work-item, which sums its samples pairwise in `real` (float, or double under the double preset;
+ * a pass holds at most 4096 samples) and writes, not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
  * dropped here (bit test, survives fast maths) and show up as valid_samples < samples. */
 #ifndef CLPT_FILM_CL
 #define CLPT_FILM_CL
@@ -36,6 +35,14 @@ CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, Vec3 radiance, uin
   acc->valid_samples += valid ? (real)1 : (real)0;
 }
 
+/* acc += other (sums of disjoint sample sets). */
+CLPT_INLINE void pixel_accumulator_merge(PixelAccumulator* acc, const PixelAccumulator* other) {
+  acc->sum = v3_add(acc->sum, other->sum);
+  acc->sum_sq = v3_add(acc->sum_sq, other->sum_sq);
+  acc->valid_samples += other->valid_samples;
+  acc->segments += other->segments;
+}
+
 CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
   out->sum[0] = (float)acc->sum.x;
   out->sum[1] = (float)acc->sum.y;
@@ -57,19 +64,34 @@ CLPT_INLINE void job_result_store(__global float* results, uint job, Vec3 radian
   results[4 * job + 3] = as_float(segments);
 }
 
+/* Pairwise (cascade) summation: partial sums of 1, 2, 4, ... samples, merged like the carries of a
+ * binary counter, so that each sample passes through about log2(n) additions instead of n. A pass
+ * of 4096 equal samples of 0.7 summed one after another in float came out 4e-5 low, the same way
+ * in every pass (so the double accumulation over passes kept the bias); summed pairwise it is
+ * exact. 13 levels cover kMaxSamplesPerPass = 4096. */
+#define CLPT_PAIRWISE_LEVELS 13
+
 /* One work-item per pixel of the launch: its samples summed in sample order, so the sums do not
  * depend on which form traced them or in what order. */
 __kernel void film_sum_jobs(const GpuRenderParams params, __global const float* results,
                             __global GpuPixelPass* pass) {
   const uint local_pixel = (uint)get_global_id(0);
   if (local_pixel >= params.pixel_count) return;
-  PixelAccumulator acc = pixel_accumulator_new();
+  PixelAccumulator level[CLPT_PAIRWISE_LEVELS];
   for (uint s = 0; s < params.samples_per_pass; ++s) {
     const uint j = s * params.pixel_count + local_pixel;
-    pixel_accumulator_add(&acc, v3(results[4 * j], results[4 * j + 1], results[4 * j + 2]),
+    PixelAccumulator carry = pixel_accumulator_new();
+    pixel_accumulator_add(&carry, v3(results[4 * j], results[4 * j + 1], results[4 * j + 2]),
                           as_uint(results[4 * j + 3]));
+    /* Sample s completes the partial sums of the levels where s has trailing one bits. */
+    uint l = 0u;
+    for (; (s >> l) & 1u; ++l) pixel_accumulator_merge(&carry, &level[l]);
+    level[l] = carry;
   }
-  film_write_pass(&pass[local_pixel], &acc);
+  PixelAccumulator total = pixel_accumulator_new();
+  for (uint l = 0u; l < CLPT_PAIRWISE_LEVELS; ++l)
+    if ((params.samples_per_pass >> l) & 1u) pixel_accumulator_merge(&total, &level[l]);
+  film_write_pass(&pass[local_pixel], &total);
 }
 
 #endif

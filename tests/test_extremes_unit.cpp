@@ -142,12 +142,19 @@ TEST(PrecisionRange, TinySphereFarAwayWarnsNamingItAndItsLine) {
   EXPECT_TRUE(precision_range_warnings(scene, Precision::Double).empty());
 }
 
-// The fast preset's centre-based discriminant cancels on huge spheres: its estimate for the
-// book's walls is larger than robust's by orders of magnitude.
-TEST(PrecisionRange, FastEstimateIncludesTheCentreBasedCancellation) {
+// The fast preset's discriminant b'^2 - c' cancels for a small sphere far away: the book's scene
+// stays in range, a unit ball 1e4 away does not, though robust takes it.
+TEST(PrecisionRange, FastEstimateIncludesTheDiscriminantCancellation) {
   const Scene unit = unit_book_scene();
+  EXPECT_TRUE(precision_range_warnings(unit, Precision::Fast).empty());
   EXPECT_GT(worst_sphere_precision(unit, Precision::Fast).relative_error,
-            100 * worst_sphere_precision(unit, Precision::Robust).relative_error);
+            worst_sphere_precision(unit, Precision::Robust).relative_error);
+  Scene far = unit;
+  far.spheres[6].center = {-2, 1, -1e4};  // the left ball, pushed 1e4 away
+  EXPECT_TRUE(precision_range_warnings(far, Precision::Robust).empty());
+  const std::vector<std::string> w = precision_range_warnings(far, Precision::Fast);
+  ASSERT_FALSE(w.empty());
+  EXPECT_NE(w[0].find("sphere '" + far.spheres[6].name + "'"), std::string::npos) << w[0];
 }
 
 TEST(PrecisionRange, EmissionBeyondTheFilmsFloatRangeWarns) {

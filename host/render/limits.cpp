@@ -52,7 +52,7 @@ uint64_t launch_buffer_budget(const DeviceInfo& device) {
 
 uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count) {
   const uint64_t per_sample = 16 * uint64_t(std::max(pixel_count, 1u));
-  return static_cast<uint32_t>(std::clamp<uint64_t>(launch_buffer_budget(device) / per_sample, 1, UINT32_MAX));
+  return static_cast<uint32_t>(std::clamp<uint64_t>(launch_buffer_budget(device) / per_sample, 1, kMaxSamplesPerPass));
 }
 
 void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {

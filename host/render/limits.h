@@ -28,7 +28,7 @@ uint64_t launch_buffer_budget(const DeviceInfo& device);
 
 // The most samples per pass whose job results (16 B per sample of each of `pixel_count` pixels)
 // fit launch_buffer_budget(device); at least 1. Both execution forms are bounded by it.
-uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count);
+uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count);  // <= kMaxSamplesPerPass
 
 // Which settings the command line set: a limit they break is a usage error (exit 2) naming the
 // option; one the scene file breaks is a scene error (exit 3) naming the file.

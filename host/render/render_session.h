@@ -101,5 +101,7 @@ uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pi
                            double target_s, uint32_t granularity);
 
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
+// kernels/film.cl sums a pass pairwise in CLPT_PAIRWISE_LEVELS = 13 levels: up to 8191 samples.
+static_assert(kMaxSamplesPerPass < (1u << 13), "film.cl's pairwise sum has 13 levels");
 
 }  // namespace clpt

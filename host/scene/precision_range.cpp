@@ -22,12 +22,14 @@
 //     the visible features are measured in. So the relative error of sphere i is
 //         rho_i = delta_i / min(r_i, L).
 //     The book's scene: rho <= 2e-6 (balls of radius 1 about 9 units away).
-//  4. The fast preset uses the textbook centre-based discriminant: |c - o|^2 - r^2 is formed
-//     directly, with an absolute error of about u (C^2 + r^2) (C = |c - o|) against the r^2 whose
-//     sign it decides, and the hit distance suffers a similar cancellation; numerics.md measured
-//     46% wrong hit/miss for a unit sphere 1e4 away. Its estimate is therefore
-//         rho_fast_i = max(rho_i, u (C^2 + r^2) / (r min(r, L))),
-//     which is 1e-3 on the book's radius-1e5 walls.
+//  4. The fast preset keeps the s0/n0 form but decides hit or miss by b'^2 - c' instead of
+//     r^2 - |l|^2 (intersect.cl). c' = |e|^2 - 2 r (n0 . e) has a magnitude of up to D^2 + 2 r D
+//     (e = s0 - o, |e| ~ D), so the discriminant carries an absolute error of about
+//     u (D^2 + 2 r D) against the r^2 whose sign it decides: negligible on the walls (where r^2
+//     dominates) and on the book's balls, fatal for a small sphere far away. Its estimate is
+//         rho_fast_i = max(rho_i, u (D^2 + 2 r D) / (r min(r, L))).
+//     (The textbook centre-based form, `--intersection centre`, is far worse: its |c - o|^2 - r^2
+//     cancels on the radius-1e5 walls themselves; README "Precision presets".)
 //  5. The threshold is not derived but measured: proven_relative_error() is the largest rho at
 //     which the extreme-scene matrix (README "Numerical extremes") passed on that preset. A
 //     scaled scene keeps every rho (all lengths scale), a translated one changes only term 1:
@@ -104,9 +106,8 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
     const double delta = 2 * u * p.distance_from_camera + kDoubleRoundoff * world_size;
     p.relative_error = delta / p.feature_size;
     if (precision == Precision::Fast) {
-      const double centre_distance = length(sub(s.center, camera));
-      const double cancellation =
-          u * (centre_distance * centre_distance + s.radius * s.radius) / (s.radius * p.feature_size);
+      const double d = p.distance_from_camera;
+      const double cancellation = u * (d * d + 2 * s.radius * d) / (s.radius * p.feature_size);
       p.relative_error = std::max(p.relative_error, cancellation);
     }
     out.push_back(p);
