@@ -118,26 +118,82 @@ const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices) {
   return devices.front();
 }
 
-const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
+namespace {
+
+// The Nth device (from 0) of a type, for "gpu:N" / "cpu:N"; null when there are fewer.
+const DeviceInfo* nth_of_type(const std::vector<DeviceInfo>& devices, bool gpu, const std::string& n) {
+  if (n.empty() || n.size() > 6 || !std::all_of(n.begin(), n.end(), [](unsigned char c) { return std::isdigit(c); }))
+    return nullptr;
+  size_t wanted = std::stoul(n);
+  for (const DeviceInfo& d : devices)
+    if ((gpu ? d.is_gpu : d.is_cpu) && wanted-- == 0) return &d;
+  return nullptr;
+}
+
+// One --device entry, or null when it names no device.
+const DeviceInfo* find_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
   const std::string s = lower(spec);
-  if (s.empty() || s == "best") return best_device(devices);
+  if (s.empty() || s == "best") return &best_device(devices);
   if (std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); })) {
-    const size_t index = std::stoul(s);
-    if (index < devices.size()) return devices[index];
+    if (s.size() <= 9 && std::stoul(s) < devices.size()) return &devices[std::stoul(s)];
   } else if (s == "gpu") {
     const DeviceInfo& best = best_device(devices);
-    if (best.is_gpu) return best;
+    if (best.is_gpu) return &best;
   } else if (s == "cpu") {
     for (const DeviceInfo& d : devices)
-      if (d.is_cpu) return d;
+      if (d.is_cpu) return &d;
+  } else if (s.rfind("gpu:", 0) == 0 || s.rfind("cpu:", 0) == 0) {
+    return nth_of_type(devices, s[0] == 'g', s.substr(4));
   } else {
     for (const DeviceInfo& d : devices)
-      if (lower(d.name).find(s) != std::string::npos) return d;
+      if (lower(d.name).find(s) != std::string::npos) return &d;
   }
-  std::string message = "--device '" + spec + "': no such device; available:";
+  return nullptr;
+}
+
+std::string device_listing(const std::vector<DeviceInfo>& devices) {
+  std::string listing = "available:";
   for (const DeviceInfo& d : devices)
-    message += "\n  " + std::to_string(d.index) + ": " + d.type + " " + d.label();
-  throw Error(ExitCode::Usage, message);
+    listing += "\n  " + std::to_string(d.index) + ": " + d.type + " " + d.label();
+  return listing;
+}
+
+}  // namespace
+
+const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
+  if (const DeviceInfo* d = find_device(devices, spec)) return *d;
+  throw Error(ExitCode::Usage, "--device '" + spec + "': no such device; " + device_listing(devices));
+}
+
+std::vector<DeviceInfo> select_devices(const std::vector<DeviceInfo>& devices, const std::string& spec) {
+  if (spec.find(',') == std::string::npos && lower(spec) != "all") return {select_device(devices, spec)};
+  std::vector<DeviceInfo> chosen;
+  auto add = [&](const DeviceInfo& d, const std::string& entry) {
+    for (const DeviceInfo& c : chosen)
+      if (c.index == d.index)
+        throw Error(ExitCode::Usage, "--device '" + spec + "': entry '" + entry + "' names device " +
+                                         std::to_string(d.index) + " a second time; " +
+                                         device_listing(devices));
+    chosen.push_back(d);
+  };
+  size_t start = 0;
+  for (;;) {
+    const size_t comma = spec.find(',', start);
+    const std::string entry = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (entry.empty())
+      throw Error(ExitCode::Usage, "--device '" + spec + "': empty entry in the list; " + device_listing(devices));
+    if (lower(entry) == "all") {
+      for (const DeviceInfo& d : devices) add(d, entry);
+    } else if (const DeviceInfo* d = find_device(devices, entry)) {
+      add(*d, entry);
+    } else {
+      throw Error(ExitCode::Usage, "--device '" + spec + "': entry '" + entry + "': no such device; " +
+                                       device_listing(devices));
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return chosen;
 }
 
 }  // namespace clpt

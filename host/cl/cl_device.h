@@ -42,8 +42,15 @@ std::vector<DeviceInfo> list_devices();
 const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices);
 
 // Resolves a --device value: an index from `clpt devices`, "cpu" or "gpu" (the first of that type,
-// "gpu" meaning the best GPU), "best", or a case-insensitive substring of the device name.
+// "gpu" meaning the best GPU), "cpu:N" or "gpu:N" (the Nth device of that type, from 0, in
+// `clpt devices` order), "best", or a case-insensitive substring of the device name.
 // Throws Error(Usage) naming the option and listing the devices when nothing matches.
 const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec);
+
+// Resolves a --device value that may name several devices: "all" (every device), or a comma list
+// of select_device entries ("0,1", "gpu:0,cpu"). A single entry resolves exactly as
+// select_device. Throws Error(Usage) naming --device and the bad entry, and listing the devices,
+// for an entry that matches nothing, an empty entry, or a device listed twice.
+std::vector<DeviceInfo> select_devices(const std::vector<DeviceInfo>& devices, const std::string& spec);
 
 }  // namespace clpt

@@ -117,6 +117,22 @@ void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] c
   if (!quiet) std::printf("wrote %s\n", written.c_str());
 }
 
+// Several devices: each one's share of the samples, its own paths/s over the time it was busy,
+// and the combined rate over the wall time of the passes.
+void print_device_shares(const RenderReport& r) {
+  const double total = std::max<double>(1, double(r.paths));
+  const double wall = std::max(1e-9, r.render_seconds);
+  for (size_t i = 0; i < r.devices.size(); ++i) {
+    const DeviceShare& d = r.devices[i];
+    std::printf("  device %zu %s, %s: %5.1f%% of the samples, %.2f M paths/s, busy %.2f s (%.0f%%), %llu launches%s\n",
+                i, d.device.c_str(), execution_form_name(d.form), 100.0 * double(d.paths) / total,
+                double(d.paths) / std::max(1e-9, d.busy_seconds) * 1e-6, d.busy_seconds,
+                100.0 * d.busy_seconds / wall, (unsigned long long)d.launches,
+                d.failure.empty() ? "" : " (failed; its work went to the others)");
+  }
+  std::printf("  combined: %.2f M paths/s on %zu devices\n", double(r.paths) / wall * 1e-6, r.devices.size());
+}
+
 void print_summary(const Scene& scene, const RenderReport& r) {
   const double seconds = std::max(1e-9, r.render_seconds);
   // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many.
@@ -139,6 +155,7 @@ void print_summary(const Scene& scene, const RenderReport& r) {
   }
   if (r.dropped)
     std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
+  if (r.devices.size() > 1) print_device_shares(r);
 }
 
 // --resume: the checkpoint's film, checked against this render (exit 2 on any mismatch).
@@ -237,7 +254,8 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--time", o->time_s, "Stop after this many seconds (with --spp: whichever comes first)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's)");
-  cmd->add_option("--device", o->device, "Device: index from `clpt devices`, cpu, gpu, or a name substring");
+  cmd->add_option("--device", o->device, "Device: index from `clpt devices`, cpu, gpu, cpu:N, gpu:N, a name substring; "
+                  "several: all, or a comma list (0,1)");
   cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")

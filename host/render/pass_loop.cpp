@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <string>
 
+#include "render/device_pool.h"
 #include "render/limits.h"
 #include "render/progress.h"
 
@@ -15,35 +18,11 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// Throughput carried from launch to launch, and across passes (it is per pixel-sample).
-struct LaunchState {
-  double pixel_samples_per_s = 0;
-  uint32_t previous_pixels = 0;
-};
-
-// One pass of params.samples_per_pass samples over the whole image, in one launch or in
-// pixel-range launches; film.add_pass assembles the ranges.
-void run_one_pass(Renderer& renderer, GpuRenderParams params, Film& film,
-                  const PassLoopOptions& options, LaunchState& state, RenderReport& report) {
-  const uint32_t pixels = params.pixel_count;
-  const uint32_t samples = params.samples_per_pass;
-  if (!options.split_launches) {
-    film.add_pass(renderer.render_pass(params), 0, samples);
-    ++report.launches;
-    return;
-  }
-  for (uint32_t begin = 0; begin < pixels;) {
-    const uint32_t n = next_launch_pixels(options.launches, pixels - begin, samples,
-                                          state.pixel_samples_per_s, state.previous_pixels);
-    params.pixel_begin = begin;
-    params.pixel_count = n;
-    const Clock::time_point start = Clock::now();
-    std::vector<GpuPixelPass> pass = renderer.render_pass(params);
-    state.pixel_samples_per_s = double(n) * samples / std::max(1e-9, seconds_since(start));
-    state.previous_pixels = n;
-    film.add_pass(pass, begin, samples);
-    begin += n;
-    ++report.launches;
+// Tells the user about devices that failed (their work went to the others), below the progress line.
+void print_notices(DevicePool& pool, Progress& progress) {
+  for (const std::string& notice : pool.take_notices()) {
+    progress.finish();
+    std::fprintf(stderr, "clpt: %s\n", notice.c_str());
   }
 }
 
@@ -69,7 +48,7 @@ uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint
   return pixels;
 }
 
-void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
+void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
                 const PassLoopOptions& options, RenderReport& report) {
   const uint64_t stop_spp = options.target_spp ? options.target_spp : kMaxSpp;
   const uint32_t g = options.granularity;
@@ -77,10 +56,10 @@ void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
   const Clock::time_point t0 = Clock::now();
   Clock::time_point last_checkpoint = t0;
   const uint64_t samples_before = film.total_samples();  // a resumed film already holds some
-  LaunchState launch;
   GpuRenderParams pass = params;
   double rate = 0;  // samples per pixel per second
   while (film.samples_per_pixel() < stop_spp) {
+    print_notices(pool, progress);
     if (interrupted(options)) {
       report.interrupted = true;
       break;
@@ -92,9 +71,9 @@ void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
     pass.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
     pass.samples_per_pass = std::min(
         next_pass_samples(film.samples_per_pixel(), stop_spp, rate, pass_s, g),
-        std::max(g, renderer.max_samples_per_pass(params.pixel_count) / g * g));
+        std::max(g, pool.max_samples_per_pass(params.pixel_count) / g * g));
     const Clock::time_point pass_start = Clock::now();
-    run_one_pass(renderer, pass, film, options, launch, report);
+    pool.run_pass(pass, film);
     rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
     ++report.passes;
     progress.update(report.passes, film.samples_per_pixel(), options.target_spp,
@@ -105,6 +84,7 @@ void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
       last_checkpoint = Clock::now();
     }
   }
+  print_notices(pool, progress);
   progress.finish();
 }
 

@@ -1,7 +1,8 @@
 // The pass loop of a render: passes of whole sample counts over the image until the sample count
-// or the time budget is reached, or an interrupt is requested. On the megakernel each pass is
-// split into launches over pixel ranges, each sized from the measured throughput to take about
-// a target time, so no launch runs into a display GPU's watchdog (numerics.md, "Watchdogs").
+// or the time budget is reached, or an interrupt is requested. Each pass is traced by the devices
+// of a DevicePool in launches over pixel ranges; on the megakernel each launch is sized from the
+// measured throughput to take about a target time, so no launch runs into a display GPU's
+// watchdog (numerics.md, "Watchdogs").
 #pragma once
 
 #include <atomic>
@@ -38,8 +39,6 @@ struct PassLoopOptions {
   double time_limit_s = 0;       // 0: none
   double pass_target_s = 0.5;    // wall time per pass, from the measured rate
   uint32_t granularity = 1;      // samples per pass are a multiple of this (sampler period)
-  bool split_launches = false;   // megakernel: pixel-range launches sized by `launches`
-  LaunchSizing launches;
   // Set asynchronously (a signal handler); checked between passes: the running pass finishes.
   const std::atomic<bool>* interrupt = nullptr;
   // Called between passes, at most every checkpoint_every_s seconds (none when empty).
@@ -48,10 +47,14 @@ struct PassLoopOptions {
   bool show_progress = false;
 };
 
+class DevicePool;
+
 // Adds passes to `film` (which may already hold samples: a resumed render continues at
-// sample index film.samples_per_pixel()). `params` describes the whole image. Fills passes,
-// launches and interrupted (true only when the loop stopped early for an interrupt) in `report`. Blocking; throws what the renderer throws.
-void run_passes(Renderer& renderer, const GpuRenderParams& params, Film& film,
+// sample index film.samples_per_pixel()), each traced by the devices of `pool` (one or several).
+// `params` describes the whole image. Fills passes and interrupted (true only when the loop
+// stopped early for an interrupt) in `report`; prints the pool's notices of failed devices on
+// stderr. Blocking; throws what the pool throws.
+void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
                 const PassLoopOptions& options, RenderReport& report);
 
 }  // namespace clpt

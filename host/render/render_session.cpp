@@ -7,6 +7,8 @@
 #include "cl/cl_context.h"
 #include "cl/cl_device.h"
 #include "kernels/kernel_options.h"
+#include "render/device_pool.h"
+#include "render/fault_injection.h"
 #include "render/limits.h"
 #include "render/megakernel_renderer.h"
 #include "render/pass_loop.h"
@@ -21,24 +23,34 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-PassLoopOptions pass_loop_options(const RenderRequest& request, const DeviceInfo& device,
-                                  ExecutionForm form) {
+PassLoopOptions pass_loop_options(const RenderRequest& request) {
   const RenderSettings& settings = request.scene.settings;
   PassLoopOptions o;
   o.target_spp = request.spp_given ? uint64_t(settings.spp) : 0;
   o.time_limit_s = request.time_limit_s;
   o.granularity = settings.sampler == Sampler::Grid ? 16u : 1u;
-  // The wavefront's launches are bounded by its paths in flight; only the megakernel splits.
-  o.split_launches = form == ExecutionForm::Megakernel;
-  const uint32_t pixels = uint32_t(settings.width) * uint32_t(settings.height);
-  o.launches.target_s = request.launch_target_s;
-  o.launches.first_pixels = std::clamp(pixels / 64, 1u, 4096u);
-  o.launches.max_pixels = uint32_t(std::max<uint64_t>(1, launch_buffer_budget(device) / sizeof(GpuPixelPass)));
   o.interrupt = request.interrupt;
   o.checkpoint = request.checkpoint;
   o.checkpoint_every_s = request.checkpoint_every_s;
   o.show_progress = request.show_progress;
   return o;
+}
+
+PoolSettings pool_settings(const RenderRequest& request, const DeviceScene& device_scene) {
+  const Scene& scene = request.scene;
+  PoolSettings s;
+  s.scene = &device_scene;
+  s.features = request.generic_kernel ? generic_features(request.precision)
+                                      : features_for_scene(scene, request.precision);
+  s.features.intersection = request.intersection;
+  s.form = request.form;
+  s.paths_in_flight = request.paths_in_flight;
+  s.local_size = request.local_size;
+  s.use_kernel_cache = request.use_kernel_cache;
+  s.launch_target_s = request.launch_target_s;
+  s.image_pixels = uint32_t(scene.settings.width) * uint32_t(scene.settings.height);
+  s.faults = FaultPlan::from_environment();
+  return s;
 }
 
 }  // namespace
@@ -105,43 +117,25 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   check_scene_limits(scene);  // before any device work: fails fast and allocates nothing
 
-  // 1. The device, and a context on it.
-  const std::vector<DeviceInfo> devices = list_devices();
-  DeviceContext ctx(select_device(devices, request.device));
-  if (request.use_kernel_cache) report.kernel_cache = ctx.use_default_kernel_cache();
-  report.device = ctx.where();
-  check_precision_supported(request.precision, ctx.device());
-  report.precision = request.precision;
-
-  // 2. The scene as the kernels see it, and a kernel specialised for it.
+  // 1. The devices (one, or several sharing every pass), and the scene as the kernels see it.
+  const std::vector<DeviceInfo> devices = select_devices(list_devices(), request.device);
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
-  KernelFeatures features = request.generic_kernel ? generic_features(request.precision)
-                                                    : features_for_scene(scene, request.precision);
-  features.intersection = request.intersection;
-  report.form = request.form.value_or(default_form_for(ctx.device()));
-  check_device_memory(estimate_device_memory(report.form, uint64_t(settings.width) * settings.height,
-                                             device_scene.spheres.size(), request.paths_in_flight,
-                                             ctx.device()),
-                      ctx.device());
-  const std::unique_ptr<Renderer> renderer = make_renderer(
-      report.form, ctx, device_scene, features, request.paths_in_flight, request.local_size);
-  report.build_options = renderer->build_options();
-  report.build_seconds = renderer->build_seconds();
-  if (auto* wavefront = dynamic_cast<WavefrontRenderer*>(renderer.get()))
-    report.paths_in_flight = wavefront->paths_in_flight();
+
+  // 2. On each device a context and a kernel specialised for the scene, built in parallel.
+  DevicePool pool(devices, pool_settings(request, device_scene));
+  report.precision = request.precision;
 
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
   Film film = request.resume ? *request.resume : Film(settings.width, settings.height);
   const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
   const auto t0 = std::chrono::steady_clock::now();
-  run_passes(*renderer, make_params(scene, device_scene), film,
-             pass_loop_options(request, ctx.device(), report.form), report);
+  run_passes(pool, make_params(scene, device_scene), film, pass_loop_options(request), report);
   report.render_seconds = seconds_since(t0);
   report.spp = film.samples_per_pixel();
   report.paths = film.total_samples() - before.total_samples;
   report.segments = film.total_segments() - before.total_segments;
   report.dropped = film.dropped_samples();
-  report.stage_times = renderer->stage_times();
+  pool.fill_report(report);
   return film;
 }
 

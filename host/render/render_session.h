@@ -19,7 +19,7 @@ class KernelCache;
 
 struct RenderRequest {
   Scene scene;               // settings already merged with command-line overrides
-  std::string device = "";   // --device value ("" = best)
+  std::string device = "";   // --device value ("" = best; "all" or a comma list: several devices)
   double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
   bool spp_given = true;     // false when only --time bounds the render
   bool show_progress = false;
@@ -41,8 +41,20 @@ struct RenderRequest {
   double checkpoint_every_s = 60;
 };
 
+// One device's part in a render (RenderReport::devices).
+struct DeviceShare {
+  std::string device;             // label, "device 'NAME' (PLATFORM)"
+  ExecutionForm form = ExecutionForm::Megakernel;
+  double build_seconds = 0;
+  uint64_t paths = 0;             // samples it traced in this run
+  uint64_t segments = 0;          // ray segments of those samples
+  uint64_t launches = 0;          // pixel ranges it traced
+  double busy_seconds = 0;        // wall time inside its launches (results read back included)
+  std::string failure;            // empty: it worked to the end; else the error that retired it
+};
+
 struct RenderReport {
-  std::string device;          // label of the device used
+  std::string device;          // label of the device used (several: joined with " + ")
   std::string build_options;
   double build_seconds = 0;    // program build, including any driver cache hit
   double render_seconds = 0;   // passes only
@@ -58,6 +70,7 @@ struct RenderReport {
   std::shared_ptr<KernelCache> kernel_cache;  // the one used (null when off); hits() > 0: loaded
   uint64_t launches = 0;     // kernel launches of the passes (megakernel: pixel-range launches)
   bool interrupted = false;  // stopped early: `interrupt` was set before the target was reached
+  std::vector<DeviceShare> devices;  // every device of --device, in its order (failed ones too)
 };
 
 struct DeviceInfo;

@@ -1,0 +1,90 @@
+// The devices of one render (--device 0,1 / all), each with its own context and renderer, sharing
+// every pass. Within a pass the devices pull pixel ranges from one queue (work_queue.h), each
+// range sized from that device's own measured throughput, so fast devices take more; the film
+// adds each range under a lock. A device whose build or launch throws clpt::Error is retired: its
+// unfinished range goes back to the queue for the others. One device is the N = 1 case of the
+// same code, with the launches of a single-device render.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cl/cl_device.h"
+#include "kernels/kernel_options.h"
+#include "render/fault_injection.h"
+#include "render/film.h"
+#include "render/pass_loop.h"
+#include "render/render_session.h"
+#include "render/renderer.h"
+#include "render/work_queue.h"
+#include "scene/device_scene.h"
+
+namespace clpt {
+
+// What every device's renderer is built from (RenderRequest's device-independent part).
+struct PoolSettings {
+  const DeviceScene* scene = nullptr;  // must outlive the pool's constructor
+  KernelFeatures features;
+  std::optional<ExecutionForm> form;   // unset: each device's default_form_for
+  uint32_t paths_in_flight = 0;        // wavefront; 0: from the device
+  size_t local_size = 0;
+  bool use_kernel_cache = true;
+  double launch_target_s = 0.075;      // megakernel launches (watchdogs); <= 0: none
+  uint32_t image_pixels = 0;
+  FaultPlan faults;
+};
+
+class DevicePool {
+ public:
+  // Builds a context and renderer on every device, in parallel (one thread per device). A device
+  // whose set-up throws clpt::Error is retired with a notice. Throws when none is left: the
+  // device's own error when there was one device, else an Error naming every device's failure.
+  DevicePool(const std::vector<DeviceInfo>& devices, const PoolSettings& settings);
+  ~DevicePool();
+  DevicePool(const DevicePool&) = delete;
+  DevicePool& operator=(const DevicePool&) = delete;
+
+  // Traces the pass `params` (samples_per_pass from sample_begin, over the whole image) into
+  // `film`; every working device pulls ranges until the pass is done. Blocking. Throws as the
+  // constructor does when every device has failed before the pass was complete (the film then
+  // holds part of the pass and must not be used); rethrows any other exception of a device.
+  void run_pass(const GpuRenderParams& params, Film& film);
+
+  // The largest samples per pass every working device accepts for `pixel_count` pixels.
+  uint32_t max_samples_per_pass(uint32_t pixel_count) const;
+
+  // Messages for the user about devices retired since the last call ("device 1 (...) failed:
+  // ...; its work goes to the other devices").
+  std::vector<std::string> take_notices();
+
+  // Device label(s), form, build, launches, stage times and RenderReport::devices.
+  void fill_report(RenderReport& report) const;
+
+ private:
+  struct Member;
+  struct PassState;
+
+  void build(Member& member, const PoolSettings& settings);
+  void work(Member& member, const GpuRenderParams& params, Film& film, PassState& pass);
+  // Pixels of member's next range; called under mutex_.
+  uint32_t range_pixels(Member& member, uint32_t remaining, uint32_t samples) const;
+  // Marks member failed with the exception being handled; called under mutex_.
+  void retire(Member& member, const std::string& what, std::exception_ptr error);
+  [[noreturn]] void throw_every_device_failed() const;
+  size_t working_count() const;
+
+  std::vector<std::unique_ptr<Member>> members_;  // in --device list order
+  FaultPlan faults_;
+  mutable std::mutex mutex_;             // members' counters, the pass queue, the film, notices
+  std::condition_variable changed_;      // a range was given back or finished
+  std::vector<std::string> notices_;
+  std::exception_ptr fatal_;             // an exception that is not a device failure
+};
+
+}  // namespace clpt

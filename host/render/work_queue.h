@@ -1,0 +1,45 @@
+// The pixels of one pass, handed out as ranges to the devices of a render (device_pool.h), and
+// how large a range one device takes. Not thread-safe: the pool holds its lock around it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace clpt {
+
+struct PixelRange {
+  uint32_t begin = 0;
+  uint32_t count = 0;  // 0: no range
+};
+
+class PixelRangeQueue {
+ public:
+  // The pixels [0, pixels) of a pass, none handed out yet.
+  explicit PixelRangeQueue(uint32_t pixels) : next_(0), end_(pixels) {}
+
+  // Pixels not handed out (ranges given back count again).
+  uint32_t remaining() const;
+  bool empty() const { return remaining() == 0; }
+
+  // Up to `count` (>= 1) consecutive pixels: from a range given back first, else fresh ones.
+  // Returns a range of count 0 when the queue is empty.
+  PixelRange take(uint32_t count);
+
+  // A range that was taken but not traced (its device failed): handed out again.
+  void give_back(PixelRange range);
+
+ private:
+  uint32_t next_, end_;                 // fresh pixels [next_, end_)
+  std::vector<PixelRange> given_back_;  // taken first
+};
+
+// Pixels of a device's next range. Pure. `launch`: what that device's own launch sizing gives
+// (next_launch_pixels: watchdog target, growth bound, memory bound). `share`: the device's
+// fraction of the combined throughput of the devices still working (1 alone, or while any
+// device is unmeasured). Guided self-scheduling: a device takes at most `share` of what is left
+// (but at least `min_pixels`), so ranges shrink towards the end of a pass and the devices finish
+// it at about the same time instead of one waiting for another's long last range. The result is
+// in [1, remaining] (0 when remaining is 0).
+uint32_t balanced_range_pixels(uint32_t launch, uint32_t remaining, double share, uint32_t min_pixels);
+
+}  // namespace clpt
