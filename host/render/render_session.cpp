@@ -119,7 +119,7 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   // 1. The devices (one, or several sharing every pass), and the scene as the kernels see it.
   const std::vector<DeviceInfo> devices = select_devices(list_devices(), request.device);
-  const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height);
+  const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision);
 
   // 2. On each device a context and a kernel specialised for the scene, built in parallel.
   DevicePool pool(devices, pool_settings(request, device_scene));

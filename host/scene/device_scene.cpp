@@ -85,11 +85,15 @@ std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling) {
   return lights;
 }
 
-double ray_epsilon_for(const Camera& camera) {
-  return 1e-5 * length(sub(camera.look_at, camera.position));
+double ray_epsilon_for(const Camera& camera, Precision precision) {
+  // Float: 1e-5 of the view distance, measured on the book's scene (numerics.md). Double rounds
+  // 2^29 times finer, so its epsilon is that much smaller: otherwise a ball far away, with the
+  // look-at point on it, would skip hits closer than 1e-5 of its distance, i.e. its own interior.
+  const double scale = precision == Precision::Double ? 0x1p-29 : 1.0;
+  return 1e-5 * scale * length(sub(camera.look_at, camera.position));
 }
 
-DeviceScene make_device_scene(const Scene& scene, int width, int height) {
+DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision) {
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
@@ -106,7 +110,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height) {
   store(out.camera.sensor_center, dir);
   store(out.camera.sensor_right, right);
   store(out.camera.sensor_up, up);
-  out.ray_epsilon = static_cast<float>(ray_epsilon_for(cam));
+  out.ray_epsilon = static_cast<float>(ray_epsilon_for(cam, precision));
   return out;
 }
 

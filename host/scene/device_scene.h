@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "kernels/types.h"
+#include "kernels/kernel_options.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -20,7 +21,8 @@ struct DeviceScene {
 // n0 the outward normal there, both relative to the camera position. Then every float the
 // kernels see is of the size of distances inside the scene, never of a huge radius or a large
 // world coordinate.
-DeviceScene make_device_scene(const Scene& scene, int width, int height);
+// `precision` sets the ray epsilon (ray_epsilon_for).
+DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision = Precision::Robust);
 
 // How next-event estimation samples an emitter (RenderSettings::light_sampling).
 //   Cap:    uniformly by area over the part of it that no other sphere hides, found as the
@@ -35,7 +37,8 @@ enum class LightSampling { Cap, Sphere };
 std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling);
 
 // Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
-// the value numerics.md measured as robust there), so it scales with the scene.
-double ray_epsilon_for(const Camera& camera);
+// the value numerics.md measured as robust there), so it scales with the scene; 2^-29 of that for
+// the double preset.
+double ray_epsilon_for(const Camera& camera, Precision precision = Precision::Robust);
 
 }  // namespace clpt

@@ -141,7 +141,7 @@ std::vector<std::string> precision_range_warnings(const Scene& scene, Precision 
     }
     warnings.push_back(w);
   }
-  const double epsilon = ray_epsilon_for(scene.camera);
+  const double epsilon = ray_epsilon_for(scene.camera, precision);
   for (const Sphere& s : scene.spheres) {
     const double gap = std::abs(length(sub(s.center, scene.camera.position)) - s.radius);
     if (gap >= kNearClipMargin * epsilon) continue;

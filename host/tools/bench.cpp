@@ -55,7 +55,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   row.estimator = scene.settings.estimator;
   row.device = ctx.device().name;
   row.local_size = local_size;
-  const DeviceScene ds = make_device_scene(scene, c.width, c.height);
+  const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
   KernelFeatures features = generic ? generic_features(precision) : features_for_scene(scene, precision);
 
   // Cold: options no driver cache has seen. Cached: the same build twice, the second timed.
