@@ -41,7 +41,7 @@ typedef float real;
 #define CLPT_NO_HIT ((real)1e30f)
 
 #if CLPT_PRECISION == CLPT_PRECISION_FAST
-#define clpt_sqrt(x) native_sqrt(x)
+#define clpt_sqrt(x) sqrt(x)
 #else
 #define clpt_sqrt(x) sqrt(x)
 #endif
