@@ -11,8 +11,8 @@
  * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free.
  *
  * Precision presets (host/kernels/kernel_options.cpp decides; README "Precision presets"):
- *   CLPT_PRECISION 0 fast:   real = float, built with -cl-fast-relaxed-math; native_* sin, cos,
- *                            powr and sqrt; the cheaper surface-point intersection (intersect.cl)
+ *   CLPT_PRECISION 0 fast:   real = float, built with -cl-fast-relaxed-math; native_* sin, cos
+ *                            and powr; the cheaper surface-point intersection (intersect.cl)
  *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
  *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow
  * Buffers of the scene stay float (camera-relative, so their rounding is relative to distances
@@ -40,11 +40,9 @@ typedef float real;
  * -cl-finite-math-only) a compiler may fold comparisons with INFINITY. */
 #define CLPT_NO_HIT ((real)1e30f)
 
-#if CLPT_PRECISION == CLPT_PRECISION_FAST
+/* One square root for every preset: under -cl-fast-relaxed-math the compiler may already use an
+ * approximate one, and native_sqrt measured no faster on PoCL. */
 #define clpt_sqrt(x) sqrt(x)
-#else
-#define clpt_sqrt(x) sqrt(x)
-#endif
 
 typedef struct Vec3 {
   real x, y, z;
