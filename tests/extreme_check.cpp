@@ -18,26 +18,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-struct Region {
-  std::string name;
-  int x0, y0, x1, y1;
-};
-
-// tests/reference/book_regions.txt: the book scene's walls, floor, ceiling, light, balls, shadow
-// at 160x120.
-std::vector<Region> book_regions() {
-  std::ifstream in(source_dir() + "/tests/reference/book_regions.txt");
-  std::vector<Region> regions;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    Region r;
-    s >> r.name >> r.x0 >> r.y0 >> r.x1 >> r.y1;
-    regions.push_back(r);
-  }
-  return regions;
-}
 
 struct Rendered {
   std::vector<float> mean, variance;
@@ -222,15 +202,6 @@ int comparisons_of(const Extreme& extreme) {
   }
 }
 
-double sidak_z(int comparisons) {
-  const double alpha = 1 - std::pow(1 - 0.01, 1.0 / std::max(1, comparisons));
-  double lo = 0, hi = 20;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-  }
-  return lo;
-}
 
 ExtremeResult check_extreme(const Extreme& extreme, const ExtremeRun& run) {
   const Rendered r = render(extreme, run);

@@ -1,6 +1,8 @@
 // Renders an extreme scene (tests/extreme_scenes.h) in a precision preset and judges its image.
 #pragma once
 
+#include "render_test_util.h"  // sidak_z, book_regions
+
 #include <cstdint>
 #include <string>
 
@@ -29,8 +31,6 @@ struct ExtremeRun {
 // Statistical comparisons one extreme contributes to the family (for ExtremeRun).
 int comparisons_of(const Extreme& extreme);
 
-// z for a two-sided test at family-wise alpha 0.01 over `comparisons`, Sidak-corrected.
-double sidak_z(int comparisons);
 
 // Region means of zero-variance regions (the light) may differ by this relative error, the float
 // rounding of a scaled emission, on top of the statistical allowance.

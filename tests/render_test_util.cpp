@@ -1,6 +1,12 @@
 #include "render_test_util.h"
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "device_test_util.h"
 #include "scene/scene_loader.h"
@@ -23,6 +29,62 @@ TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint
   RenderReport report;
   Film film = run_render(request, report);
   return {std::move(film), report};
+}
+
+std::vector<Region> book_regions() {
+  const std::string path = source_dir() + "/tests/reference/book_regions.txt";
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << "missing " << path;
+  std::vector<Region> regions;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    Region r;
+    s >> r.name >> r.x0 >> r.y0 >> r.x1 >> r.y1;
+    regions.push_back(r);
+  }
+  return regions;
+}
+
+double sidak_z(int comparisons, double family_alpha) {
+  const double alpha = 1 - std::pow(1 - family_alpha, 1.0 / std::max(1, comparisons));
+  double lo = 0, hi = 20;  // bisection on the upper tail; precision is not critical here
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,
+                                       const std::function<void(RenderRequest&)>& configure) {
+  RenderRequest request;
+  request.use_kernel_cache = false;  // tests compile the kernels under test from source
+  request.scene = load_book_scene(scene_name);
+  request.scene.settings.width = 48;
+  request.scene.settings.height = 36;
+  request.scene.settings.spp = 32;
+  request.scene.settings.seed = seed;
+  request.scene.settings.sampler = Sampler::Jitter;
+  const char* device = std::getenv("CLPT_TEST_DEVICE");
+  request.device = device ? device : "cpu";
+  configure(request);
+  RenderReport report;
+  return run_render(request, report).mean_rgb();
+}
+
+void expect_same_image(const std::vector<float>& a, const std::vector<float>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  double sum_a = 0, sum_b = 0;
+  size_t close = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sum_a += a[i];
+    sum_b += b[i];
+    close += std::abs(a[i] - b[i]) <= 1e-4 * std::max({std::abs(a[i]), std::abs(b[i]), 1e-6f});
+  }
+  EXPECT_NEAR(sum_a, sum_b, 1e-4 * sum_a);
+  EXPECT_GE(double(close), 0.99 * double(a.size())) << close << " of " << a.size();
 }
 
 Scene load_book_scene(const std::string& name) {

@@ -2,7 +2,9 @@
 // seed, on the test device.
 #pragma once
 
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "render/film.h"
 #include "render/render_session.h"
@@ -28,5 +30,26 @@ struct RegionStats {
 };
 RegionStats region_stats(const std::vector<float>& mean, const std::vector<float>& variance, int width,
                          int x0, int y0, int x1, int y1);
+
+// A named rectangle of the book scene at 160x120 (tests/reference/book_regions.txt).
+struct Region {
+  std::string name;
+  int x0, y0, x1, y1;
+};
+std::vector<Region> book_regions();
+
+// z such that a two-sided normal test at that z, repeated `comparisons` times, has family-wise
+// false-alarm probability `family_alpha` (Sidak correction).
+double sidak_z(int comparisons, double family_alpha = 0.01);
+
+// One of the book's scenes at 48x36, 32 spp, jitter sampler, `seed`, on the test device with
+// clpt's kernel cache off; `configure` sets what the test varies. Returns the mean image.
+std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,
+                                       const std::function<void(RenderRequest&)>& configure);
+
+// The same image up to float rounding (two runs of the same seed): image means within 1e-4
+// relative and >= 99% of values within 1e-4 relative (a different contraction of a*b+c can send a
+// rare path elsewhere).
+void expect_same_image(const std::vector<float>& a, const std::vector<float>& b);
 
 }  // namespace clpt::test

@@ -44,37 +44,6 @@ constexpr int kScenes = 3;
 // gtest prints parameters in test names and messages: the variant's name, not its bytes.
 void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 
-struct Region {
-  std::string name;
-  int x0, y0, x1, y1;
-};
-
-std::vector<Region> load_regions() {
-  const std::string path = source_dir() + "/tests/reference/book_regions.txt";
-  std::ifstream in(path);
-  EXPECT_TRUE(in.good()) << "missing " << path;
-  std::vector<Region> regions;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream s(line);
-    Region r;
-    s >> r.name >> r.x0 >> r.y0 >> r.x1 >> r.y1;
-    regions.push_back(r);
-  }
-  return regions;
-}
-
-// Inverse of the standard normal upper tail, by bisection (precision is not critical here).
-double z_for_two_sided(double alpha) {
-  double lo = 0, hi = 10;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 void compare_with_gemspt(const std::string& scene_name, const Variant& variant) {
   const std::string ref_path = source_dir() + "/tests/reference/gemspt_" + scene_name + "_160x120.exr";
   ASSERT_TRUE(std::filesystem::exists(ref_path)) << "missing reference " << ref_path;
@@ -95,10 +64,10 @@ void compare_with_gemspt(const std::string& scene_name, const Variant& variant) 
   const TestRender r = render_for_test(scene, kWidth, kHeight, variant.spp, 2015);
   const auto mean = r.film.mean_rgb();
   const auto var = r.film.variance_rgb();
-  const std::vector<Region> regions = load_regions();
+  const std::vector<Region> regions = book_regions();
   ASSERT_GE(regions.size(), 8u);
   const int comparisons = kScenes * int(std::size(kVariants)) * int(regions.size()) * 3 /*channels*/;
-  const double z = z_for_two_sided(1 - std::pow(1 - 0.01, 1.0 / comparisons));
+  const double z = sidak_z(comparisons);
   for (const Region& g : regions) {
     const RegionStats a = region_stats(mean, var, kWidth, g.x0, g.y0, g.x1, g.y1);
     const RegionStats b = region_stats(ref_mean, ref_var, kWidth, g.x0, g.y0, g.x1, g.y1);

@@ -20,36 +20,12 @@ struct Variant {
 };
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
-  RenderRequest request;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  request.scene = load_book_scene(scene_name);
-  request.scene.settings.width = 48;
-  request.scene.settings.height = 36;
-  request.scene.settings.spp = 32;
-  request.scene.settings.seed = 77;
-  request.scene.settings.sampler = Sampler::Jitter;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
-  request.form = v.form;
-  request.paths_in_flight = v.paths_in_flight;
-  request.generic_kernel = v.generic;
-  request.local_size = v.local_size;
-  RenderReport report;
-  return run_render(request, report).mean_rgb();
-}
-
-// Means within 1e-4 relative and >= 99% of values within 1e-4 relative.
-void expect_same_image(const std::vector<float>& a, const std::vector<float>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  double sum_a = 0, sum_b = 0;
-  size_t close = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    sum_a += a[i];
-    sum_b += b[i];
-    close += std::abs(a[i] - b[i]) <= 1e-4 * std::max({std::abs(a[i]), std::abs(b[i]), 1e-6f});
-  }
-  EXPECT_NEAR(sum_a, sum_b, 1e-4 * sum_a);
-  EXPECT_GE(double(close), 0.99 * double(a.size())) << close << " of " << a.size();
+  return render_book_variant(scene_name, 77, [&](RenderRequest& request) {
+    request.form = v.form;
+    request.paths_in_flight = v.paths_in_flight;
+    request.generic_kernel = v.generic;
+    request.local_size = v.local_size;
+  });
 }
 
 class FormsAgree : public ::testing::TestWithParam<std::string> {};

@@ -30,17 +30,6 @@ Film render_on(const std::string& scene_name, const std::string& device) {
   return run_render(request, report);
 }
 
-double z_limit(int comparisons) {
-  // Two-sided normal quantile for a family-wise alpha of 0.001, by bisection.
-  const double alpha = 1 - std::pow(1 - 0.001, 1.0 / comparisons);
-  double lo = 0, hi = 10;
-  for (int i = 0; i < 100; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (std::erfc(mid / std::sqrt(2.0)) > alpha ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 class GpuAgainstCpu : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GpuAgainstCpu, SameImageStatistically) {
@@ -50,7 +39,7 @@ TEST_P(GpuAgainstCpu, SameImageStatistically) {
   const Film gpu = render_on(GetParam(), "gpu"), cpu = render_on(GetParam(), "cpu");
   const auto mg = gpu.mean_rgb(), vg = gpu.variance_rgb(), mc = cpu.mean_rgb(), vc = cpu.variance_rgb();
   const int blocks = (kWidth / kBlock) * (kHeight / kBlock);
-  const double z = z_limit(3 * (blocks + 1));
+  const double z = sidak_z(3 * (blocks + 1), 0.001);
   for (int by = -1; by < kHeight / kBlock; ++by)
     for (int bx = 0; bx < (by < 0 ? 1 : kWidth / kBlock); ++bx) {
       // by = -1: the whole image; otherwise block (bx, by).
