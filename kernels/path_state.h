@@ -5,7 +5,7 @@
  * (wavefront.cl), the host into buffer allocations and kernel arguments
  * (wavefront_renderer.cpp), so the two cannot drift apart. One element per path slot, one scalar
  * per buffer: scalar loads keep the kernels vectorisable on PoCL and coalesced on GPUs.
- * The persistent fields exist twice: compaction copies the surviving paths from one set into the
+ * The persistent fields exist twice: shading stores the surviving paths from one set into the
  * other, densely, so every stage kernel reads slot i for work-item i (no index indirection). */
 #ifndef CLPT_PATH_STATE_H
 #define CLPT_PATH_STATE_H
