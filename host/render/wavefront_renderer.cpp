@@ -8,7 +8,7 @@
 
 namespace clpt {
 uint32_t WavefrontRenderer::default_paths_in_flight(const DeviceInfo& device) {
-  if (device.is_cpu) return std::clamp<uint32_t>(device.compute_units * 8192u, 8192u, 1u << 20);
+  if (device.is_cpu) return std::clamp<uint32_t>(device.compute_units * 32768u, 32768u, 1u << 21);
   return std::clamp<uint32_t>(device.compute_units * 16384u, 65536u, 4u << 20);
 }
 
