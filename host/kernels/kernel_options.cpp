@@ -54,8 +54,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.estimator = parse_estimator(scene.settings.estimator).value_or(Estimator::Book);
   f.russian_roulette = scene.settings.rr_from >= 0;
   if (f.estimator == Estimator::Nee)
-    f.light_count = static_cast<int>(
-        light_caps(scene, scene.settings.light_sampling == "sphere" ? LightSampling::Sphere : LightSampling::Cap).size());
+    f.light_count = static_cast<int>(light_caps(scene).size());
   f.phong = false;
   f.glass = false;
   f.sphere_count = static_cast<int>(scene.spheres.size());

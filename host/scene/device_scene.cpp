@@ -2,18 +2,11 @@
 
 #include <cmath>
 
+#include "scene/vec3_ops.h"
+
 namespace clpt {
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 add(const Vec3& a, const Vec3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3 scale(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double length(const Vec3& a) { return std::sqrt(dot(a, a)); }
-Vec3 normalize(const Vec3& a) { return scale(a, 1.0 / length(a)); }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 void store(float out[3], const Vec3& v) {
   for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(v[i]);
 }
@@ -29,12 +22,9 @@ void store_split(float hi[3], float lo[3], const Vec3& v) {
 
 GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_position) {
   GpuSphere g{};
-  const Vec3 towards_anchor = sub(anchor, s.center);
-  // A sphere centred on the anchor has no closest point: any direction will do.
-  const Vec3 n0 = length(towards_anchor) > 0 ? normalize(towards_anchor) : Vec3{0, 1, 0};
-  const Vec3 s0 = add(s.center, scale(n0, s.radius));
-  store_split(g.surface_point, g.surface_point_lo, sub(s0, camera_position));
-  store_split(g.surface_normal, g.surface_normal_lo, n0);
+  const SurfaceFrame frame = surface_frame(s, anchor);
+  store_split(g.surface_point, g.surface_point_lo, sub(frame.point, camera_position));
+  store_split(g.surface_normal, g.surface_normal_lo, frame.normal);
   g.radius = store_split(s.radius, g.radius_lo);
   g.material = static_cast<clpt_u32>(s.material.type);
   store(g.reflectance, s.material.reflectance);
@@ -46,7 +36,19 @@ GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_positio
 
 }  // namespace
 
-std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling) {
+SurfaceFrame surface_frame(const Sphere& s, const Vec3& anchor) {
+  const Vec3 towards_anchor = sub(anchor, s.center);
+  // A sphere centred on the anchor has no closest point: any direction will do.
+  const Vec3 n0 = length(towards_anchor) > 0 ? normalize(towards_anchor) : Vec3{0, 1, 0};
+  return {add(s.center, scale(n0, s.radius)), n0};
+}
+
+LightSampling light_sampling_of(const RenderSettings& settings) {
+  return settings.light_sampling == "sphere" ? LightSampling::Sphere : LightSampling::Cap;
+}
+
+std::vector<GpuLight> light_caps(const Scene& scene) {
+  const LightSampling sampling = light_sampling_of(scene.settings);
   const double pi = 3.14159265358979323846;
   std::vector<GpuLight> lights;
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
@@ -97,8 +99,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
-  out.lights = light_caps(scene, scene.settings.light_sampling == "sphere" ? LightSampling::Sphere
-                                                                            : LightSampling::Cap);
+  out.lights = light_caps(scene);
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
   const Vec3 dir = normalize(sub(cam.look_at, cam.position));

@@ -17,6 +17,14 @@ struct DeviceScene {
   float ray_epsilon = 0;  // world units; see ray_epsilon_for()
 };
 
+// The point s0 of sphere s nearest `anchor` (the camera's look-at point) and the outward unit
+// normal n0 there, in world units: how every sphere is stored (kernels/types.h, GpuSphere).
+struct SurfaceFrame {
+  Vec3 point;
+  Vec3 normal;
+};
+SurfaceFrame surface_frame(const Sphere& s, const Vec3& anchor);
+
 // Each sphere becomes (s0, n0, r): s0 the surface point closest to the camera's look-at point,
 // n0 the outward normal there, both relative to the camera position. Then every float the
 // kernels see is of the size of distances inside the scene, never of a huge radius or a large
@@ -29,12 +37,14 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
 //           smallest cap left outside any one other sphere (the default)
 //   Sphere: uniformly by area over the whole sphere (for comparison: README "Estimators")
 enum class LightSampling { Cap, Sphere };
+LightSampling light_sampling_of(const RenderSettings& settings);  // from settings.light_sampling
 
 // The light entries for `scene`'s emitters, in double: an emitter entirely inside another sphere
 // can never be seen and gets none. The cap is where the light is sampled; points of the emitter
 // outside it are still lit by BSDF sampling, which the kernels weight accordingly, so any cap is
 // unbiased and a smaller one only wastes fewer shadow rays.
-std::vector<GpuLight> light_caps(const Scene& scene, LightSampling sampling);
+// Sampled as the scene's settings.light_sampling says.
+std::vector<GpuLight> light_caps(const Scene& scene);
 
 // Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
 // the value numerics.md measured as robust there), so it scales with the scene; 2^-29 of that for

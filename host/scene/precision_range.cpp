@@ -47,6 +47,7 @@
 #include "scene/precision_range.h"
 
 #include "scene/device_scene.h"
+#include "scene/vec3_ops.h"
 
 #include <algorithm>
 #include <cmath>
@@ -55,19 +56,7 @@
 namespace clpt {
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double length(const Vec3& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
-
 constexpr double kDoubleRoundoff = 0x1p-53;
-
-// The surface point the device stores for sphere s (as in device_scene.cpp), in world units.
-Vec3 stored_surface_point(const Sphere& s, const Vec3& anchor) {
-  const Vec3 towards = sub(anchor, s.center);
-  const double d = length(towards);
-  if (d == 0) return {s.center[0], s.center[1] + s.radius, s.center[2]};
-  const double k = s.radius / d;
-  return {s.center[0] + towards[0] * k, s.center[1] + towards[1] * k, s.center[2] + towards[2] * k};
-}
 
 std::string format_short(double v) {
   char buf[32];
@@ -109,7 +98,7 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
     const Sphere& s = scene.spheres[i];
     SpherePrecision p;
     p.sphere = int(i);
-    p.distance_from_camera = length(sub(stored_surface_point(s, scene.camera.look_at), camera));
+    p.distance_from_camera = length(sub(surface_frame(s, scene.camera.look_at).point, camera));
     p.feature_size = std::min(s.radius, view_distance);
     const double world_size = length(s.center) + s.radius + length(camera);
     const double delta = 2 * u * p.distance_from_camera + kDoubleRoundoff * world_size;

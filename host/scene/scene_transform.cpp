@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scene/vec3_ops.h"
+
 namespace clpt {
 namespace {
 
@@ -13,8 +15,6 @@ void require_positive_finite(double value, const char* what) {
                                 std::to_string(value) + ")");
 }
 
-Vec3 scaled(const Vec3& v, double factor) { return {v[0] * factor, v[1] * factor, v[2] * factor}; }
-Vec3 shifted(const Vec3& v, const Vec3& offset) { return {v[0] + offset[0], v[1] + offset[1], v[2] + offset[2]}; }
 
 }  // namespace
 
@@ -22,11 +22,11 @@ Scene scale_scene(const Scene& scene, double factor) {
   require_positive_finite(factor, "scale factor");
   Scene out = scene;
   for (Sphere& s : out.spheres) {
-    s.center = scaled(s.center, factor);
+    s.center = scale(s.center, factor);
     s.radius *= factor;
   }
-  out.camera.position = scaled(out.camera.position, factor);
-  out.camera.look_at = scaled(out.camera.look_at, factor);
+  out.camera.position = scale(out.camera.position, factor);
+  out.camera.look_at = scale(out.camera.look_at, factor);
   return out;
 }
 
@@ -34,9 +34,9 @@ Scene translate_scene(const Scene& scene, const Vec3& offset) {
   for (double o : offset)
     if (!std::isfinite(o)) throw std::invalid_argument("translation must be finite");
   Scene out = scene;
-  for (Sphere& s : out.spheres) s.center = shifted(s.center, offset);
-  out.camera.position = shifted(out.camera.position, offset);
-  out.camera.look_at = shifted(out.camera.look_at, offset);
+  for (Sphere& s : out.spheres) s.center = add(s.center, offset);
+  out.camera.position = add(out.camera.position, offset);
+  out.camera.look_at = add(out.camera.look_at, offset);
   return out;
 }
 
@@ -44,7 +44,7 @@ Scene scale_emission(const Scene& scene, double factor) {
   require_positive_finite(factor, "emission factor");
   Scene out = scene;
   for (Sphere& s : out.spheres)
-    if (s.material.type == MaterialType::Emitter) s.material.emission = scaled(s.material.emission, factor);
+    if (s.material.type == MaterialType::Emitter) s.material.emission = scale(s.material.emission, factor);
   return out;
 }
 

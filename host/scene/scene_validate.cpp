@@ -9,6 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/vec3_ops.h"
 #include "util/error.h"
 
 namespace clpt::scene_detail {
@@ -36,12 +37,6 @@ bool all_finite(const Vec3& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 subtract(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 // A rule violation on `key`, reported at the key's position.
 [[noreturn]] void fail_at(const SourceMap& sources, const std::string& key,
@@ -127,7 +122,7 @@ void check_camera(const Camera& camera, const SourceMap& sources) {
     fail_at(sources, "camera.vertical_fov_deg",
             "vertical_fov_deg must be in (0, 180) (got " + format_number(camera.vertical_fov_deg) +
                 ")");
-  const Vec3 view = subtract(camera.look_at, camera.position);
+  const Vec3 view = sub(camera.look_at, camera.position);
   // Relative test: a look_at one rounding step away from a far position gives no direction.
   const double scale = std::max(length(camera.position), length(camera.look_at));
   if (length(view) <= 1e-9 * scale || length(view) == 0)
