@@ -10,15 +10,10 @@
 #include "cl/cl_error.h"
 #include "render/limits.h"
 #include "render/wavefront_renderer.h"
+#include "util/clock.h"
 
 namespace clpt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // When several devices share a pass, a range of the wavefront (which needs no watchdog bound)
 // aims at a quarter of the pass loop's 0.5 s pass: enough ranges per pass to balance, few enough

@@ -8,15 +8,10 @@
 #include "render/device_pool.h"
 #include "render/limits.h"
 #include "render/progress.h"
+#include "util/clock.h"
 
 namespace clpt {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Tells the user about devices that failed (their work went to the others), below the progress line.
 void print_notices(DevicePool& pool, Progress& progress) {

@@ -15,13 +15,10 @@
 #include "render/wavefront_renderer.h"
 #include "scene/device_scene.h"
 #include "util/error.h"
+#include "util/clock.h"
 
 namespace clpt {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 PassLoopOptions pass_loop_options(const RenderRequest& request) {
   const RenderSettings& settings = request.scene.settings;
@@ -128,7 +125,7 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
   Film film = request.resume ? *request.resume : Film(settings.width, settings.height);
   const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   run_passes(pool, make_params(scene, device_scene), film, pass_loop_options(request), report);
   report.render_seconds = seconds_since(t0);
   report.spp = film.samples_per_pixel();

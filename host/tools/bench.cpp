@@ -18,6 +18,7 @@
 #include "scene/device_scene.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
+#include "util/clock.h"
 
 namespace clpt {
 namespace {
@@ -74,9 +75,9 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   for (int run = 0; run < c.warmup + c.repeat; ++run) {
     Film film(c.width, c.height);
     params.sample_begin = static_cast<cl_uint>(run) * params.samples_per_pass;
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     film.add_pass(renderer->render_pass(params), 0, params.samples_per_pass);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double s = seconds_since(t0);
     for (const StageTime& t : renderer->stage_times()) {
       if (run >= c.warmup) stage_runs[t.label].push_back(t.seconds - stage_before[t.label]);
       stage_before[t.label] = t.seconds;
