@@ -55,13 +55,18 @@ CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumula
 }
 
 /* Job results, as both execution forms leave them: job j of a launch is sample j / pixel_count of
- * pixel j % pixel_count; results[4 j + 0..2] hold its radiance, results[4 j + 3] the bits of its
- * segment count. */
-CLPT_INLINE void job_result_store(__global float* results, uint job, Vec3 radiance, uint segments) {
-  results[4 * job + 0] = (float)radiance.x;
-  results[4 * job + 1] = (float)radiance.y;
-  results[4 * job + 2] = (float)radiance.z;
-  results[4 * job + 3] = as_float(segments);
+ * pixel j % pixel_count. They are planar, n = pixel_count * samples_per_pass jobs per plane:
+ * results[j], results[n + j], results[2 n + j] hold its radiance, results[3 n + j] the bits of its
+ * segment count. Planar, not four floats per job: four adjacent stores let the compiler pair a
+ * path's colour channels into 2-wide vectors (SLP), which stops PoCL's vectoriser across
+ * work-items; on GPUs, planes make the stores coalesce. */
+CLPT_INLINE uint job_count(const GpuRenderParams* params) { return params->pixel_count * params->samples_per_pass; }
+
+CLPT_INLINE void job_result_store(__global float* results, uint job, uint jobs, Vec3 radiance, uint segments) {
+  results[job] = (float)radiance.x;
+  results[jobs + job] = (float)radiance.y;
+  results[2u * jobs + job] = (float)radiance.z;
+  results[3u * jobs + job] = as_float(segments);
 }
 
 /* Pairwise (cascade) summation: partial sums of 1, 2, 4, ... samples, merged like the carries of a
@@ -78,11 +83,12 @@ __kernel void film_sum_jobs(const GpuRenderParams params, __global const float* 
   const uint local_pixel = (uint)get_global_id(0);
   if (local_pixel >= params.pixel_count) return;
   PixelAccumulator level[CLPT_PAIRWISE_LEVELS];
+  const uint jobs = job_count(&params);
   for (uint s = 0; s < params.samples_per_pass; ++s) {
     const uint j = s * params.pixel_count + local_pixel;
     PixelAccumulator carry = pixel_accumulator_new();
-    pixel_accumulator_add(&carry, v3(results[4 * j], results[4 * j + 1], results[4 * j + 2]),
-                          as_uint(results[4 * j + 3]));
+    pixel_accumulator_add(&carry, v3(results[j], results[jobs + j], results[2u * jobs + j]),
+                          as_uint(results[3u * jobs + j]));
     /* Sample s completes the partial sums of the levels where s has trailing one bits. */
     uint l = 0u;
     for (; (s >> l) & 1u; ++l) pixel_accumulator_merge(&carry, &level[l]);

@@ -52,6 +52,7 @@ CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return s->radius; 
 typedef struct Hit {
   real t;     /* distance along the unit ray, CLPT_NO_HIT when nothing was hit */
   int sphere; /* index into the sphere buffer, -1 when nothing was hit */
+  CLPT_ABI_PAD(int, 3)
 } Hit;
 
 /* Which formula (kernel_options.cpp decides, from the precision preset):

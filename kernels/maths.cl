@@ -44,8 +44,17 @@ typedef float real;
  * approximate one, and native_sqrt measured no faster on PoCL. */
 #define clpt_sqrt(x) sqrt(x)
 
+/* Every small private struct ends with CLPT_ABI_PAD, which makes it larger than 16 bytes. PoCL
+ * compiles for the host's ABI, and x86-64 passes a struct of at most 16 bytes in registers, as
+ * 2-float vectors ({x, y} of a Vec3) or 64-bit integers (two uints); those pieces survive
+ * inlining, and one vector- or 64-bit-typed value in a loop stops PoCL's vectoriser across
+ * work-items, or halves its width (measured: the lockstep megakernel ran 6x slower without the
+ * pads). A larger struct is passed in memory, which inlining removes without a trace; the pad
+ * itself is never read or written, so it costs nothing. */
+#define CLPT_ABI_PAD(type, n) type abi_pad_[n];
 typedef struct Vec3 {
   real x, y, z;
+  CLPT_ABI_PAD(real, 2)
 } Vec3;
 
 CLPT_INLINE Vec3 v3(real x, real y, real z) {
@@ -74,6 +83,7 @@ CLPT_INLINE bool v3_is_zero(Vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z =
 
 typedef struct Float2 {
   real x, y;
+  CLPT_ABI_PAD(real, 3)
 } Float2;
 
 CLPT_INLINE Float2 f2(real x, real y) {

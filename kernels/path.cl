@@ -169,6 +169,24 @@ CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* sph
   return v3_scale(v3_mul(f_cos, v3_load_global(spheres[ls.sphere].emission)), weight);
 }
 
+/* Field-wise choice between two path states (a select of the whole struct would stop PoCL's
+ * vectoriser, see v3_select). */
+CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
+  PathState p;
+  p.origin = v3_select(c, a.origin, b.origin);
+  p.direction = v3_select(c, a.direction, b.direction);
+  p.throughput = v3_select(c, a.throughput, b.throughput);
+  p.radiance = v3_select(c, a.radiance, b.radiance);
+  p.pixel = c ? a.pixel : b.pixel;
+  p.sample = c ? a.sample : b.sample;
+  p.bsdf_pdf = c ? a.bsdf_pdf : b.bsdf_pdf;
+  p.bounce = c ? a.bounce : b.bounce;
+  p.segments = c ? a.segments : b.segments;
+  p.skip_sphere = c ? a.skip_sphere : b.skip_sphere;
+  p.alive = c ? a.alive : b.alive;
+  return p;
+}
+
 /* One shading event: a miss ends the path (black background); an emitter adds its emission
  * (MIS-weighted under nee) and ends it (emitters do not reflect); past max_bounces the path ends;
  * otherwise, under nee, a shadow ray adds the light it finds, and the material scatters the path.

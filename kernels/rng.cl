@@ -14,10 +14,12 @@
 
 typedef struct RngKey {
   uint k0, k1;
+  CLPT_ABI_PAD(uint, 3)
 } RngKey;
 
 typedef struct Philox4 {
   uint x, y, z, w;
+  CLPT_ABI_PAD(uint, 1)
 } Philox4;
 
 CLPT_INLINE Philox4 philox4(uint x, uint y, uint z, uint w) {
@@ -53,6 +55,7 @@ CLPT_INLINE float rng_to_unit_float(uint bits) { return (float)(bits >> 8) * 0x1
 
 typedef struct Uniform4 {
   float u0, u1, u2, u3;
+  CLPT_ABI_PAD(float, 1)
 } Uniform4;
 
 /* Four independent uniforms in [0, 1) for (pixel, sample, dimension). */

@@ -97,7 +97,9 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderPar
  * so PoCL still vectorises it across work-items; work-item 0 then ranks the group's survivors
  * serially (a work-group is at most CLPT_WAVEFRONT_GROUP) and reserves their slots.
  * No work-item returns early, since every one must reach the barriers: the work-items past
- * `count` shade a copy of slot 0 and store nothing. */
+ * `count` shade whatever their slot holds (the host allocates a work-group of slots beyond the
+ * pool, so that every work-item loads its own slot, contiguously, instead of a gather from a
+ * clamped index), as a miss, and store nothing. */
 #ifndef CLPT_WAVEFRONT_GROUP
 #define CLPT_WAVEFRONT_GROUP 1024
 #endif
@@ -109,14 +111,14 @@ __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLigh
   const uint i = (uint)get_global_id(0);
   const uint lid = (uint)get_local_id(0);
   const bool active = i < count;
-  const uint slot = active ? i : 0u;
+  const uint slot = i;
   PathState p = path_load(slot, &params CLPT_STATE_ARGS);
   Hit hit;
   hit.t = hit_t[slot];
-  hit.sphere = hit_sphere[slot];
+  hit.sphere = active ? hit_sphere[slot] : -1;
   path_shade(&p, hit, spheres, lights, &params);
   const uint job_index = job[slot];
-  if (active && !p.alive) job_result_store(results, job_index, p.radiance, p.segments);
+  if (active && !p.alive) job_result_store(results, job_index, job_count(&params), p.radiance, p.segments);
   const bool survives = active && p.alive;
   rank_of[lid] = survives ? 1u : 0u;
   barrier(CLK_LOCAL_MEM_FENCE);

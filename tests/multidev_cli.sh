@@ -32,8 +32,9 @@ count() { grep -c -- "$1" "$2"; }
 render plain.exr 1 --device 0
 expect_exit $? 0 "plain render on device 0" plain.exr
 
-# A launch failing mid-render: the work goes to the other device.
-CLPT_INJECT_FAULT=launch:1:2 render launch_fault.exr 2 --device all
+# A launch failing mid-render: the work goes to the other device. Launches of about 1 ms, so that
+# each device has many (the whole render takes a few tens of ms on PoCL).
+CLPT_INJECT_FAULT=launch:1:2 render launch_fault.exr 2 --device all --launch-ms 1
 expect_exit $? 0 "render with launch:1:2" launch_fault.exr
 notice="device 1 (device '.*) failed: clEnqueueNDRangeKernel failed with CL_OUT_OF_RESOURCES on device .*; its work goes to the other devices"
 [[ $(count "$notice" launch_fault.exr.err) -eq 1 ]] || { fail "launch failure not printed exactly once"; cat launch_fault.exr.err; }

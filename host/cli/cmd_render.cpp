@@ -43,6 +43,7 @@ struct RenderOptions {
   bool generic = false;
   bool no_cache = false;
   std::string form = "auto";
+  std::string megakernel_loop = "auto";
   uint32_t paths_in_flight = 0;
   size_t local_size = 0;
   double launch_ms = 75;          // megakernel launch target, milliseconds; 0: one per pass
@@ -212,6 +213,7 @@ int run(const RenderOptions& o) {
   if (o.explain) {
     KernelFeatures features = o.generic ? generic_features(precision) : features_for_scene(scene, precision);
     if (o.intersection) features.intersection = parse_intersection(*o.intersection);
+    features.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);
     std::printf("%s", explain_kernel_options(features).c_str());
   }
 
@@ -224,6 +226,7 @@ int run(const RenderOptions& o) {
   if (o.intersection) request.intersection = parse_intersection(*o.intersection);
   if (o.form != "auto")
     request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
+  request.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);  // CLI11 checked the word
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
@@ -285,9 +288,14 @@ std::function<int()> add_render_command(CLI::App& app) {
                                            "clpt's kernel binary cache (`clpt cache dir`)");
   cmd->add_option("--form", o->form, "Execution form: auto (the device's default), megakernel or wavefront")
       ->check(CLI::IsMember({"auto", "megakernel", "wavefront"}));
+  cmd->add_option("--megakernel-loop", o->megakernel_loop,
+                  "Megakernel: auto (lockstep on CPUs, per path on GPUs), path or lockstep")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "path", "lockstep"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
       ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
-  cmd->add_option("--local-size", o->local_size, "Work-group size (default: the driver's choice)")
+  cmd->add_option("--local-size", o->local_size,
+                  "Work-group size (default: the lockstep loop's 64, else the driver's choice)")
       ->check(CLI::Range(size_t(1), size_t(4096)));
   cmd->add_option("--launch-ms", o->launch_ms,
                   "Megakernel: size each launch to take about this many ms (GPU watchdogs); 0: one per pass")

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "cl/cl_device.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -36,6 +37,21 @@ enum class Estimator { Book, Nee };
 const char* estimator_name(Estimator estimator);
 std::optional<Estimator> parse_estimator(const std::string& name);
 
+// The megakernel's loop (kernels/megakernel.cl; `--megakernel-loop`).
+//   auto:     lockstep on CPU devices, per path on GPUs
+//   path:     each work-item loops over its own path's segments
+//   lockstep: a work-group's paths advance one segment at a time, together (PoCL vectorises it)
+enum class MegakernelLoop { Auto, PerPath, Lockstep };
+const char* megakernel_loop_name(MegakernelLoop loop);
+// "auto" | "path" | "lockstep"; nullopt otherwise.
+std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name);
+// The lockstep work-group size when not given (--local-size): 64 measured fastest on PoCL of
+// 32..256 (README "Speed"); small groups lose fewer lanes to paths that ended early.
+constexpr uint32_t kDefaultLockstepGroup = 64;
+// Work-group size of the lockstep loop for `loop` on this device (local_size: the user's
+// --local-size, 0 for none), or 0 for the per-path loop.
+uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, size_t local_size);
+
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)
   std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
@@ -47,6 +63,8 @@ struct KernelFeatures {
   bool glass = true;     // CLPT_HAS_GLASS
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (loop unrolled); 0: read at run time
   int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop unrolled); -1: run time
+  MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:
+  uint32_t lockstep_group = 0;  // CLPT_LOCKSTEP_GROUP when > 0 (megakernel.cl); 0: per-path loop
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

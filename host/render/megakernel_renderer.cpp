@@ -3,13 +3,22 @@
 #include <algorithm>
 
 #include "render/limits.h"
+#include "util/error.h"
 
 namespace clpt {
 
 MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene,
                                        const KernelFeatures& features, size_t local_size)
-    : ctx_(ctx), local_size_(local_size) {
-  program_ = build(ctx, "megakernel.cl", features);
+    : ctx_(ctx) {
+  KernelFeatures resolved = features;
+  resolved.lockstep_group = lockstep_group_for(features.megakernel_loop, ctx.device(), local_size);
+  lockstep_group_ = resolved.lockstep_group;
+  if (lockstep_group_ > ctx.device().max_work_group_size)
+    throw Error(ExitCode::Usage, "--local-size " + std::to_string(lockstep_group_) + ": " + ctx.device().label() +
+                                     " takes work-groups of at most " +
+                                     std::to_string(ctx.device().max_work_group_size) + " work-items");
+  local_size_ = lockstep_group_ ? lockstep_group_ : local_size;
+  program_ = build(ctx, "megakernel.cl", resolved);
   kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
@@ -38,7 +47,9 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
   // PoCL compiles a kernel variant for, about a second each) a new work-group size for each.
   const bool whole_image = params.pixel_begin == 0 && params.pixel_count == params.width * params.height;
   const size_t local_size = local_size_ || whole_image ? local_size_ : kPartialLaunchLocalSize;
-  ctx_.launch(kernel_, jobs, local_size, "render_paths");
+  // The lockstep loop runs whole work-groups (megakernel.cl): round the launch up to them.
+  const size_t global_size = lockstep_group_ ? (jobs + lockstep_group_ - 1) / lockstep_group_ * lockstep_group_ : jobs;
+  ctx_.launch(kernel_, global_size, local_size, "render_paths");
   ctx_.launch(film_, params.pixel_count, local_size, "film_sum_jobs");
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), bytes);

@@ -34,7 +34,8 @@ class MegakernelRenderer : public Renderer {
   Kernel kernel_, film_;
   Buffer spheres_, lights_;
   Buffer results_, pass_;
-  size_t local_size_;
+  size_t local_size_ = 0;
+  uint32_t lockstep_group_ = 0;  // the lockstep loop's work-group size, 0: per-path loop
 };
 
 }  // namespace clpt

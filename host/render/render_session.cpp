@@ -40,6 +40,7 @@ PoolSettings pool_settings(const RenderRequest& request, const DeviceScene& devi
   s.features = request.generic_kernel ? generic_features(request.precision)
                                       : features_for_scene(scene, request.precision);
   s.features.intersection = request.intersection;
+  s.features.megakernel_loop = request.megakernel_loop;
   s.form = request.form;
   s.paths_in_flight = request.paths_in_flight;
   s.local_size = request.local_size;
@@ -92,11 +93,14 @@ void check_precision_supported(Precision precision, const DeviceInfo& device) {
                                       "--precision robust, or another device (`clpt devices`)");
 }
 
-// CPUs (PoCL): the wavefront, whose loop-free stage kernels PoCL vectorises across work-items
-// while the megakernel's per-path loop stays scalar (measured with `clpt bench`, README "Speed").
-// GPUs: the megakernel, which keeps paths in registers; no GPU has been measured yet.
+// The megakernel everywhere. On CPUs (PoCL) it runs its lockstep loop, which PoCL vectorises
+// across work-items with no path state in memory: measured 4x the wavefront's paths/s with
+// `clpt bench` (README "Speed"); the wavefront's stages move every path's state through memory
+// at every bounce. GPUs run the per-path loop, which keeps paths in registers; no GPU has been
+// measured yet.
 ExecutionForm default_form_for(const DeviceInfo& device) {
-  return device.is_cpu ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
+  (void)device;
+  return ExecutionForm::Megakernel;
 }
 
 uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,

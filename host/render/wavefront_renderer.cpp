@@ -33,8 +33,10 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   // `real` state fields are float, or double under the double preset.
   const size_t real_bytes = features.precision == Precision::Double ? 8 : 4;
 #define CLPT_REAL_BYTES real_bytes
+  // One work-group of slots beyond the pool: wf_shade's work-items past the active count load their
+  // own (unused) slot rather than a clamped one (wavefront.cl).
 #define CLPT_ALLOCATE(type, name, bytes, doc)                                              \
-  set->emplace_back(ctx, size_t(paths_) * (bytes), CL_MEM_READ_WRITE, "path state " #name);
+  set->emplace_back(ctx, (size_t(paths_) + local_size_) * (bytes), CL_MEM_READ_WRITE, "path state " #name);
   for (std::vector<Buffer>* set : {&state_, &next_state_}) {
     CLPT_PATH_STATE_FIELDS(CLPT_ALLOCATE)
   }
