@@ -47,9 +47,18 @@ expect 3 "missing.toml: cannot open scene file" -- render missing.toml -o out.ex
 expect 2 "subcommand" -- frobnicate
 expect 2 "--precision" -- render "$scene" --precision quad -o out.exr
 expect 2 "--estimator" -- render "$scene" --estimator bdpt -o out.exr
+expect 2 "--megakernel-loop" -- render "$scene" --megakernel-loop unrolled -o out.exr
 expect 2 "--rr-from" -- render "$scene" --rr-from -1 -o out.exr
 expect 2 "--intersection" -- render "$scene" --intersection exact -o out.exr
 expect 2 "--light-sampling" -- render "$scene" --light-sampling cone -o out.exr
+# The OpenImageIO module missing: exit 5 before any rendering, naming the output and the path
+# tried, and nothing written (a render to .pfm needs no module).
+CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so expect 5 \
+  "-o out.exr: cannot load the image I/O module libclpt_image_io.so (OpenImageIO)" \
+  -- render "$scene" --spp 16 --width 8 --height 8 -o out.exr
+CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so expect 2 "/nonexistent/libclpt_image_io.so: no such file" \
+  -- compare missing_a.exr missing_b.exr
+
 # A device without fp64 (CLPT_HIDE_FP64 hides PoCL's) refuses the double preset, naming it.
 CLPT_HIDE_FP64=1 expect 4 "--precision double: device '" -- render "$scene" --precision double --spp 16 --width 8 --height 8 -o out.exr
 

@@ -30,14 +30,14 @@ TEST(Launches, ManySmallLaunchesEqualOneLaunch) {
   RenderRequest one = small_request(ExecutionForm::Megakernel, Sampler::Grid, 16);
   one.launch_target_s = 0;
   RenderRequest many = one;
-  many.launch_target_s = 1e-3;  // --launch-ms 1: tens of pixels per launch on PoCL
+  many.launch_target_s = 1e-4;  // --launch-ms 0.1: a few hundred pixels per launch on PoCL
   RenderReport r1, r2;
   const Film a = run_render(one, r1);
   const Film b = run_render(many, r2);
   ASSERT_EQ(r1.passes, 1);
   ASSERT_EQ(r2.passes, 1);
   EXPECT_EQ(r1.launches, 1u);
-  EXPECT_GT(r2.launches, 16u);
+  EXPECT_GT(r2.launches, 4u);  // split for sure, however fast the device
   EXPECT_EQ(a.sums(), b.sums());
   EXPECT_EQ(a.sums_of_squares(), b.sums_of_squares());
   EXPECT_EQ(a.valid_counts(), b.valid_counts());

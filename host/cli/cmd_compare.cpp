@@ -1,7 +1,6 @@
 // `clpt compare A B`: are two renders estimates of the same image? Reads the mean and variance
 // channels, runs the tests of tools/image_compare.h, prints the report and optionally writes it
 // as JSON and a false-colour difference PNG. Exit 0 on PASS, 1 on FAIL, 2 on unusable input.
-#include <OpenImageIO/imageio.h>
 
 #include <cerrno>
 #include <cstdio>
@@ -93,19 +92,6 @@ void write_text_atomically(const std::string& path, const std::string& text) {
   commit_temporary(tmp, path);
 }
 
-void write_rgb8_atomically(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
-  const std::string tmp = temporary_path_for(path);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + OIIO::geterror());
-  const OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close()) {
-    const std::string reason = out->geterror();
-    std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
-  }
-  commit_temporary(tmp, path);
-}
-
 // Output paths are checked before any work, so a typo costs nothing.
 void check_output_path(const std::string& option, const std::string& path, const char* extension) {
   if (path.empty()) return;
@@ -129,7 +115,7 @@ int run(const CompareCommandOptions& o) {
   const CompareResult result = compare_renders(a, b, o.test);
   if (!o.json_path.empty()) write_text_atomically(o.json_path, compare_report_json(result, info_a, info_b));
   if (!o.diff_png_path.empty())
-    write_rgb8_atomically(o.diff_png_path, a.width, a.height, z_to_colour_ramp(pixel_average_z(a, b)));
+    write_rgb8_image(o.diff_png_path, a.width, a.height, z_to_colour_ramp(pixel_average_z(a, b)));
   std::fputs(format_compare_report(result, info_a, info_b).c_str(), stdout);
   return static_cast<int>(result.pass ? ExitCode::Ok : ExitCode::Failure);
 }

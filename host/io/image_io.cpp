@@ -1,11 +1,14 @@
 #include "io/image_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <future>
+#include <mutex>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -13,17 +16,81 @@
 namespace clpt {
 namespace {
 
-// Writes `pixels` (channel-interleaved) to the temporary name for `path` and returns that name;
-// the caller renames it into place once every output of the render has been written.
-std::string write_temporary(const std::string& path, const OIIO::ImageSpec& spec,
-                            OIIO::TypeDesc format, const void* pixels) {
+constexpr const char* kModuleName = "libclpt_image_io.so";
+
+// Where the module may be: $CLPT_IMAGE_IO_MODULE when set (then nowhere else); otherwise beside
+// the running executable (the build directory's clpt), then the path CMake built it at (test
+// executables live elsewhere).
+std::vector<std::string> module_candidates() {
+  if (const char* env = std::getenv("CLPT_IMAGE_IO_MODULE"); env && *env) return {env};
+  std::vector<std::string> paths;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) paths.push_back((exe.parent_path() / kModuleName).string());
+#ifdef CLPT_IMAGE_IO_MODULE_PATH
+  paths.emplace_back(CLPT_IMAGE_IO_MODULE_PATH);
+#endif
+  return paths;
+}
+
+std::string cannot_load(const std::string& tried) {
+  return std::string("cannot load the image I/O module ") + kModuleName +
+         " (OpenImageIO), which is built beside clpt; set CLPT_IMAGE_IO_MODULE to its path. Tried:" + tried;
+}
+
+struct LoadResult {
+  const ImageCodec* codec = nullptr;
+  std::string error;  // when codec is null
+};
+
+LoadResult load_module() {
+  std::string tried;
+  for (const std::string& path : module_candidates()) {
+    if (!std::filesystem::exists(path)) {
+      tried += "\n  " + path + ": no such file";
+      continue;
+    }
+    // RTLD_NOW: every OIIO symbol is bound here, on the loading thread, not at first use.
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      tried += "\n  " + path + ": " + dlerror();
+      continue;
+    }
+    using Entry = const ImageCodec* (*)();
+    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "clpt_image_codec_v1"));
+    if (!entry) {
+      tried += "\n  " + path + ": no clpt_image_codec_v1 (a module from another clpt version?)";
+      continue;
+    }
+    return {entry(), ""};  // the module stays loaded until the process ends
+  }
+  return {nullptr, cannot_load(tried)};
+}
+
+std::once_flag load_started;
+std::shared_future<LoadResult> load_result;
+
+void start_loading() {
+  std::call_once(load_started, [] { load_result = std::async(std::launch::async, load_module).share(); });
+}
+
+// The codec, waiting for the load; throws Error(code) naming `what` when the module is missing.
+const ImageCodec& codec(ExitCode code, const std::string& what) {
+  start_loading();
+  const LoadResult& r = load_result.get();
+  if (!r.codec) throw Error(code, what + ": " + r.error);
+  return *r.codec;
+}
+
+// Writes `image` to the temporary name for `path` and returns that name; the caller renames it
+// into place once every output has been written.
+std::string write_temporary(const std::string& path, const ImageToWrite& image) {
+  const ImageCodec& c = codec(ExitCode::OutputError, path);
   const std::string tmp = temporary_path_for(path);
-  auto out = OIIO::ImageOutput::create(path);
-  if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + OIIO::geterror());
-  if (!out->open(tmp, spec) || !out->write_image(format, pixels) || !out->close()) {
-    const std::string reason = out->geterror();
+  const std::string error = c.write(tmp, path, image);
+  if (!error.empty()) {
     std::remove(tmp.c_str());
-    throw Error(ExitCode::OutputError, path + ": cannot write output: " + reason);
+    throw Error(ExitCode::OutputError, path + ": cannot write output: " + error);
   }
   return tmp;
 }
@@ -38,6 +105,22 @@ std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
 }
 
 }  // namespace
+
+void preload_image_io() { start_loading(); }
+
+void check_image_io_module(const std::string& what) {
+  std::string tried;
+  for (const std::string& path : module_candidates()) {
+    if (std::filesystem::exists(path)) return;
+    tried += "\n  " + path + ": no such file";
+  }
+  throw Error(ExitCode::OutputError, what + ": " + cannot_load(tried));
+}
+
+int LoadedImage::channel(const std::string& name) const {
+  const auto it = std::find(channels.begin(), channels.end(), name);
+  return it == channels.end() ? -1 : int(it - channels.begin());
+}
 
 std::string preview_path_for(const std::string& exr_path) {
   return std::filesystem::path(exr_path).replace_extension(".png").string();
@@ -54,19 +137,38 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
       pixels[p * 6 + c] = mean[p * 3 + c];
       pixels[p * 6 + 3 + c] = variance[p * 3 + c];
     }
-  OIIO::ImageSpec spec(w, h, 6, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  spec.attribute("compression", "zip");
-  for (const auto& [key, value] : metadata) spec.attribute(key, value);
+  ImageToWrite exr;
+  exr.width = w;
+  exr.height = h;
+  exr.channels = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  exr.pixels = pixels.data();
+  exr.compression = "zip";
+  exr.metadata = metadata;
 
   const std::string png_path = preview_path_for(exr_path);
-  OIIO::ImageSpec png_spec(w, h, 3, OIIO::TypeDesc::UINT8);
   const std::vector<unsigned char> preview = tone_map_preview(mean);
-  // Both files are complete before either appears under its name.
-  const std::string exr_tmp = write_temporary(exr_path, spec, OIIO::TypeDesc::FLOAT, pixels.data());
-  std::string png_tmp;
+  ImageToWrite png;
+  png.width = w;
+  png.height = h;
+  png.channels = {"R", "G", "B"};
+  png.uint8 = true;
+  png.pixels = preview.data();
+
+  // The two files are compressed at once (each is single-threaded zlib), and both are complete
+  // before either appears under its name.
+  auto png_written = std::async(std::launch::async, [&] { return write_temporary(png_path, png); });
+  std::string exr_tmp, png_tmp;
   try {
-    png_tmp = write_temporary(png_path, png_spec, OIIO::TypeDesc::UINT8, preview.data());
+    exr_tmp = write_temporary(exr_path, exr);
+  } catch (...) {
+    try {
+      std::remove(png_written.get().c_str());
+    } catch (...) {
+    }
+    throw;
+  }
+  try {
+    png_tmp = png_written.get();
   } catch (...) {
     std::remove(exr_tmp.c_str());
     throw;
@@ -76,24 +178,21 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
   return png_path;
 }
 
-int LoadedImage::channel(const std::string& name) const {
-  const auto it = std::find(channels.begin(), channels.end(), name);
-  return it == channels.end() ? -1 : int(it - channels.begin());
+void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
+  ImageToWrite image;
+  image.width = width;
+  image.height = height;
+  image.channels = {"R", "G", "B"};
+  image.uint8 = true;
+  image.pixels = rgb.data();
+  commit_temporary(write_temporary(path, image), path);
 }
 
 LoadedImage read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(ExitCode::Usage, path + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+  const ImageCodec& c = codec(ExitCode::Usage, path);
   LoadedImage img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = spec.channelnames;
-  img.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw Error(ExitCode::Usage, path + ": cannot read image: " + in->geterror());
-  for (const OIIO::ParamValue& p : spec.extra_attribs)
-    img.metadata[p.name().string()] = p.get_string();
+  const std::string error = c.read(path, img);
+  if (!error.empty()) throw Error(ExitCode::Usage, path + ": cannot read image: " + error);
   return img;
 }
 

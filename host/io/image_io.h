@@ -1,4 +1,6 @@
-// Every image read and write of the full build goes through OpenImageIO, here.
+// Every image read and write of the full build goes through OpenImageIO, here: this side
+// prepares pixels, names and atomic renames; the OIIO calls themselves live in a module loaded
+// at run time (image_codec.h says why).
 //
 // A render writes OUT.exr (linear float R, G, B and the variance of each pixel mean in
 // variance.R, variance.G, variance.B, plus clpt:* metadata) and OUT.png beside it (8-bit
@@ -7,31 +9,31 @@
 // a half-written file under the requested name.
 #pragma once
 
-#include <map>
 #include <string>
 #include <vector>
 
+#include "io/image_codec.h"
 #include "render/film.h"
 
 namespace clpt {
 
-using ImageMetadata = std::map<std::string, std::string>;
+// Starts loading the OpenImageIO module on a background thread and returns at once, so that a
+// command which will write images later (a render) does not wait for it then. Idempotent.
+void preload_image_io();
 
-// Writes the EXR at `exr_path` and the PNG preview with the same stem. Returns the PNG path.
+// Throws Error(OutputError), naming `what` (the output) and the paths tried, when the OpenImageIO
+// module is nowhere to be found; cheap (no loading). A render calls it before any work.
+void check_image_io_module(const std::string& what);
+
+// Writes the EXR at `exr_path` and the PNG preview with the same stem (the two at once). Returns
+// the PNG path. Throws Error(OutputError) naming the file.
 std::string write_render_outputs(const std::string& exr_path, const Film& film,
                                  const ImageMetadata& metadata);
 
-struct LoadedImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::string> channels;
-  std::vector<float> pixels;  // channel-interleaved, row 0 at the top
-  ImageMetadata metadata;     // string form of every attribute
-  // Index of a named channel, or -1.
-  int channel(const std::string& name) const;
-};
+// Writes an 8-bit RGB PNG (or any format the extension names), atomically.
+void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
 
-// Reads any image OIIO can read. Throws Error(BadScene-like Usage) naming the file on failure.
+// Reads any image OIIO can read. Throws Error(Usage) naming the file on failure.
 LoadedImage read_image(const std::string& path);
 
 // The PNG path for an EXR path: same directory and stem, ".png".

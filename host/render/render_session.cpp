@@ -28,6 +28,7 @@ PassLoopOptions pass_loop_options(const RenderRequest& request) {
   o.granularity = settings.sampler == Sampler::Grid ? 16u : 1u;
   o.interrupt = request.interrupt;
   o.checkpoint = request.checkpoint;
+  o.after_first_pass = request.after_first_pass;
   o.checkpoint_every_s = request.checkpoint_every_s;
   o.show_progress = request.show_progress;
   return o;
