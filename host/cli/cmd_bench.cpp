@@ -14,6 +14,7 @@ namespace {
 struct BenchOptions {
   std::vector<std::string> scenes = {"scenes/diffuse.toml"};
   std::vector<std::string> forms = {"megakernel", "wavefront"};
+  std::vector<std::string> loops = {"auto"};
   std::vector<std::string> kernels = {"specialised"};
   std::vector<std::string> precisions = {"robust"};
   std::string json, baseline;
@@ -23,6 +24,8 @@ struct BenchOptions {
 int run(BenchConfig config, const BenchOptions& o) {
   for (const std::string& f : o.forms)
     config.forms.push_back(f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel);
+  config.megakernel_loops.clear();
+  for (const std::string& l : o.loops) config.megakernel_loops.push_back(*parse_megakernel_loop(l));
   config.generic.clear();
   for (const std::string& k : o.kernels) config.generic.push_back(k == "generic");
   config.scenes = o.scenes;
@@ -45,10 +48,12 @@ std::function<int()> add_bench_command(CLI::App& app) {
   auto config = std::make_shared<BenchConfig>();
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "bench", "Benchmark scene x form x kernel x precision x estimator x device x work-group size");
+      "bench", "Benchmark scene x form (x megakernel loop) x kernel x precision x estimator x device x work-group size");
   cmd->add_option("--scenes", o->scenes, "Scene files (default: scenes/diffuse.toml)")->delimiter(',');
   cmd->add_option("--forms", o->forms, "megakernel,wavefront")
       ->delimiter(',')->check(CLI::IsMember({"megakernel", "wavefront"}));
+  cmd->add_option("--megakernel-loops", o->loops, "auto,path,lockstep (default: auto: lockstep on CPUs, path on GPUs)")
+      ->delimiter(',')->check(CLI::IsMember({"auto", "path", "lockstep"}));
   cmd->add_option("--kernels", o->kernels, "specialised,generic")
       ->delimiter(',')->check(CLI::IsMember({"specialised", "generic"}));
   cmd->add_option("--precisions", o->precisions, "fast,robust,double (default: robust)")

@@ -36,6 +36,11 @@ class Renderer {
   // Per-kernel device time so far (empty when not measured).
   virtual std::vector<StageTime> stage_times() const { return {}; }
 
+  // The work-group size of its main kernel, 0 when the driver chooses.
+  virtual size_t work_group_size() const { return 0; }
+  // "lockstep" or "path" for the megakernel (megakernel.cl), "" for forms without that choice.
+  virtual const char* loop_name() const { return ""; }
+
   double build_seconds() const { return build_seconds_; }
   const std::string& build_options() const { return build_options_; }
 

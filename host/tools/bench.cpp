@@ -47,7 +47,7 @@ std::vector<const DeviceInfo*> resolve_devices(const std::vector<std::string>& s
 
 // One matrix cell: builds (cold, then cached), warms up, times `repeat` runs.
 BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx, ExecutionForm form,
-                    bool generic, Precision precision, size_t local_size) {
+                    bool generic, Precision precision, size_t local_size, MegakernelLoop loop) {
   BenchRow row;
   row.scene = scene.file;
   row.form = execution_form_name(form);
@@ -55,9 +55,9 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   row.precision = precision_name(precision);
   row.estimator = scene.settings.estimator;
   row.device = ctx.device().name;
-  row.local_size = local_size;
   const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
   KernelFeatures features = generic ? generic_features(precision) : features_for_scene(scene, precision);
+  features.megakernel_loop = loop;
 
   // Cold: options no driver cache has seen. Cached: the same build twice, the second timed.
   features.build_nonce = std::random_device{}() | 1u;
@@ -66,6 +66,8 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
   const auto renderer = make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
   row.build_cached_s = renderer->build_seconds();
+  row.local_size = renderer->work_group_size();
+  row.loop = renderer->loop_name();
 
   GpuRenderParams params = make_params(scene, ds);
   params.samples_per_pass = std::min(c.spp, renderer->max_samples_per_pass(params.pixel_count));
@@ -103,8 +105,8 @@ std::string format_rate(const Spread& s) {
 }  // namespace
 
 std::string BenchRow::key() const {
-  return scene + "|" + form + "|" + kernel + "|" + precision + "|" + estimator + "|" + device + "|" +
-         std::to_string(local_size);
+  return scene + "|" + form + (loop.empty() ? "" : ":" + loop) + "|" + kernel + "|" + precision + "|" +
+         estimator + "|" + device + "|" + std::to_string(local_size);
 }
 
 std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
@@ -125,14 +127,20 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
             continue;
           }
           for (ExecutionForm form : c.forms)
-            for (bool generic : c.generic)
-              for (size_t local_size : c.local_sizes) {
-                if (show_progress)
-                  std::fprintf(stderr, "bench: %s, %s, %s, %s, %s kernel, local size %zu, %s\n", file.c_str(),
-                               scene.settings.estimator.c_str(), precision_name(precision), execution_form_name(form),
-                               generic ? "generic" : "specialised", local_size, device->name.c_str());
-                rows.push_back(bench_cell(c, scene, ctx, form, generic, precision, local_size));
-              }
+            for (MegakernelLoop loop : c.megakernel_loops) {
+              // The loop is the megakernel's: the wavefront runs once, whatever the list.
+              if (form == ExecutionForm::Wavefront && loop != c.megakernel_loops.front()) continue;
+              for (bool generic : c.generic)
+                for (size_t local_size : c.local_sizes) {
+                  if (show_progress)
+                    std::fprintf(stderr, "bench: %s, %s, %s, %s%s%s, %s kernel, local size %zu, %s\n", file.c_str(),
+                                 scene.settings.estimator.c_str(), precision_name(precision),
+                                 execution_form_name(form), form == ExecutionForm::Megakernel ? " loop " : "",
+                                 form == ExecutionForm::Megakernel ? megakernel_loop_name(loop) : "",
+                                 generic ? "generic" : "specialised", local_size, device->name.c_str());
+                  rows.push_back(bench_cell(c, scene, ctx, form, generic, precision, local_size, loop));
+                }
+            }
         }
       }
   }
@@ -142,15 +150,16 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
-                "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
+  std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
+                "loop", "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
                 "build cold/cached s", "device");
   o << line;
   for (const BenchRow& r : rows) {
     char build[32];
     std::snprintf(build, sizeof build, "%.2f/%.2f", r.build_cold_s, r.build_cached_s);
-    std::snprintf(line, sizeof line, "%-22s %-10s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
-                  r.form.c_str(), r.kernel.c_str(), r.precision.c_str(), r.estimator.c_str(),
+    std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
+                  r.form.c_str(), r.loop.empty() ? "-" : r.loop.c_str(), r.kernel.c_str(), r.precision.c_str(),
+                  r.estimator.c_str(),
                   r.local_size ? std::to_string(r.local_size).c_str() : "auto",
                   format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), build,
                   r.device.c_str());
@@ -179,7 +188,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
     auto spread = [](const Spread& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max}};
     };
-    j["rows"].push_back({{"key", r.key()}, {"scene", r.scene}, {"form", r.form},
+    j["rows"].push_back({{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
                          {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
                          {"device", r.device}, {"local_size", r.local_size},
                          {"paths_in_flight", r.paths_in_flight},

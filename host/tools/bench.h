@@ -1,5 +1,5 @@
-// `clpt bench`: a matrix of scene x execution form x kernel (specialised or generic) x precision
-// preset x estimator x device x work-group size, each with cold and cached kernel build times, warm-up and repeated timed
+// `clpt bench`: a matrix of scene x execution form (and the megakernel's loop) x kernel
+// (specialised or generic) x precision preset x estimator x device x work-group size, each with cold and cached kernel build times, warm-up and repeated timed
 // passes (median and spread of paths/s and ray segments/s), and per-stage device time of the
 // wavefront from OpenCL profiling events. The same renderers as `clpt render`, nothing else.
 #pragma once
@@ -15,6 +15,7 @@ namespace clpt {
 struct BenchConfig {
   std::vector<std::string> scenes;             // scene files
   std::vector<ExecutionForm> forms;
+  std::vector<MegakernelLoop> megakernel_loops = {MegakernelLoop::Auto};  // megakernel rows only
   std::vector<std::string> devices;            // --device values; "all" expands to every device
   std::vector<size_t> local_sizes = {0};       // 0: the form's default
   std::vector<bool> generic = {false};         // false: specialised kernel, true: generic
@@ -32,7 +33,8 @@ struct Spread {
 
 struct BenchRow {
   std::string scene, form, kernel, precision, estimator, device;
-  size_t local_size = 0;
+  std::string loop;       // the megakernel's loop as run ("lockstep", "path"); "" for the wavefront
+  size_t local_size = 0;  // the work-group size as run; 0: the driver's choice
   uint32_t paths_in_flight = 0;
   double build_cold_s = 0, build_cached_s = 0;
   Spread paths_per_s, segments_per_s;
