@@ -296,7 +296,7 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--form", o->form, "Execution form: auto (the device's default), megakernel or wavefront")
       ->check(CLI::IsMember({"auto", "megakernel", "wavefront"}));
   cmd->add_option("--megakernel-loop", o->megakernel_loop,
-                  "Megakernel: auto (lockstep on CPUs, per path on GPUs), path or lockstep")
+                  "Megakernel: auto (lockstep on CPUs with --precision robust, else per path), path or lockstep")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "path", "lockstep"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")

@@ -38,7 +38,7 @@ const char* estimator_name(Estimator estimator);
 std::optional<Estimator> parse_estimator(const std::string& name);
 
 // The megakernel's loop (kernels/megakernel.cl; `--megakernel-loop`).
-//   auto:     lockstep on CPU devices, per path on GPUs
+//   auto:     lockstep on CPU devices with the robust preset, per path otherwise
 //   path:     each work-item loops over its own path's segments
 //   lockstep: a work-group's paths advance one segment at a time, together (PoCL vectorises it)
 enum class MegakernelLoop { Auto, PerPath, Lockstep };
@@ -48,9 +48,9 @@ std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name);
 // The lockstep work-group size when not given (--local-size): 64 measured fastest on PoCL of
 // 32..256 (README "Speed"); small groups lose fewer lanes to paths that ended early.
 constexpr uint32_t kDefaultLockstepGroup = 64;
-// Work-group size of the lockstep loop for `loop` on this device (local_size: the user's
-// --local-size, 0 for none), or 0 for the per-path loop.
-uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, size_t local_size);
+// Work-group size of the lockstep loop for `loop` on this device with this preset (local_size:
+// the user's --local-size, 0 for none), or 0 for the per-path loop.
+uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size);
 
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)

@@ -11,7 +11,7 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
                                        const KernelFeatures& features, size_t local_size)
     : ctx_(ctx) {
   KernelFeatures resolved = features;
-  resolved.lockstep_group = lockstep_group_for(features.megakernel_loop, ctx.device(), local_size);
+  resolved.lockstep_group = lockstep_group_for(features.megakernel_loop, ctx.device(), features.precision, local_size);
   lockstep_group_ = resolved.lockstep_group;
   if (lockstep_group_ > ctx.device().max_work_group_size)
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(lockstep_group_) + ": " + ctx.device().label() +
