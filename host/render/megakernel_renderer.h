@@ -1,5 +1,6 @@
 // The megakernel execution form (kernels/megakernel.cl): one work-item per path, looping over
-// its segments, then film_sum_jobs sums each pixel's samples. Passes are split into launches over
+// its segments (alone, or in lockstep with its work-group on CPUs), then film_sum_jobs sums each
+// pixel's samples. Passes are split into launches over
 // pixel ranges (pass_loop.h) so that no launch trips a display watchdog.
 #pragma once
 
@@ -14,7 +15,9 @@ namespace clpt {
 
 class MegakernelRenderer : public Renderer {
  public:
-  // Builds the program for `features` and uploads the scene. local_size 0 lets the driver choose.
+  // Builds the program for `features` and uploads the scene. The loop (per path or lockstep) is
+  // decided for this device by lockstep_group_for (kernel_options.h). local_size: the lockstep
+  // work-group size (0: kDefaultLockstepGroup), or the per-path loop's (0: the driver chooses).
   MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene, const KernelFeatures& features,
                      size_t local_size = 0);
 
