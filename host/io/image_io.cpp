@@ -95,6 +95,17 @@ std::string write_temporary(const std::string& path, const ImageToWrite& image) 
   return tmp;
 }
 
+// An 8-bit RGB image over `rgb` (which must outlive the result).
+ImageToWrite rgb8_image(int width, int height, const std::vector<unsigned char>& rgb) {
+  ImageToWrite image;
+  image.width = width;
+  image.height = height;
+  image.channels = {"R", "G", "B"};
+  image.uint8 = true;
+  image.pixels = rgb.data();
+  return image;
+}
+
 std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
   std::vector<unsigned char> out(rgb.size());
   for (size_t i = 0; i < rgb.size(); ++i) {
@@ -147,12 +158,7 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
 
   const std::string png_path = preview_path_for(exr_path);
   const std::vector<unsigned char> preview = tone_map_preview(mean);
-  ImageToWrite png;
-  png.width = w;
-  png.height = h;
-  png.channels = {"R", "G", "B"};
-  png.uint8 = true;
-  png.pixels = preview.data();
+  const ImageToWrite png = rgb8_image(w, h, preview);
 
   // The two files are compressed at once (each is single-threaded zlib), and both are complete
   // before either appears under its name.
@@ -179,13 +185,7 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
 }
 
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
-  ImageToWrite image;
-  image.width = width;
-  image.height = height;
-  image.channels = {"R", "G", "B"};
-  image.uint8 = true;
-  image.pixels = rgb.data();
-  commit_temporary(write_temporary(path, image), path);
+  commit_temporary(write_temporary(path, rgb8_image(width, height, rgb)), path);
 }
 
 LoadedImage read_image(const std::string& path) {

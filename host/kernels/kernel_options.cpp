@@ -68,8 +68,8 @@ std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name) {
 // three book scenes with either estimator, README "Speed"). The fast and double presets are not
 // vectorised in either loop (fast maths makes fmin/fmax pairs and native-function calls, double
 // calls the fp64 library), and there the per-path loop measured 7-21% faster in 9 of 12 cases
-// (at most 6% slower in the other 3). GPUs mask
-// diverged lanes in hardware and need no barrier per segment; no GPU has measured either yet.
+// (at most 6% slower in the other 3). GPUs mask diverged lanes in hardware and need no barrier
+// per segment; no GPU has measured either loop yet.
 uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size) {
   const bool lockstep = loop == MegakernelLoop::Lockstep ||
                         (loop == MegakernelLoop::Auto && device.is_cpu && precision == Precision::Robust);
