@@ -87,6 +87,45 @@ TEST(DeviceList, BadEntriesAreUsageErrorsNamingTheEntry) {
   EXPECT_NE(usage_error("0,0").find("available:\n  0: CPU device 'pthread-cpu' (Fake)"), std::string::npos);
 }
 
+// A simulator as Oclgrind reports itself: every device-type bit, 1 compute unit at 1 MHz, listed
+// first (its platform came first).
+DeviceInfo fake_simulator(int index) {
+  DeviceInfo d = fake_device(index, "Oclgrind Simulator", true, 1);
+  d.platform_name = "Oclgrind";
+  d.is_cpu = true;
+  d.is_simulator = true;
+  return d;
+}
+
+TEST(DeviceList, SimulatorsAreNeverTheDefaultBesideRealDevices) {
+  // 0: the simulator, 1: a CPU, 2: a GPU.
+  const std::vector<DeviceInfo> with_gpu = {fake_simulator(0), fake_device(1, "pthread-cpu", false),
+                                            fake_device(2, "Big GPU", true, 100)};
+  EXPECT_EQ(best_device(with_gpu).index, 2);
+  EXPECT_EQ(select_device(with_gpu, "cpu").index, 1);
+  EXPECT_EQ(select_device(with_gpu, "gpu").index, 2);
+  EXPECT_EQ(select_device(with_gpu, "gpu:0").index, 2);  // real devices first, then simulators
+  EXPECT_EQ(select_device(with_gpu, "gpu:1").index, 0);
+  EXPECT_EQ(select_device(with_gpu, "cpu:1").index, 0);
+  EXPECT_EQ(select_device(with_gpu, "oclgrind").index, 0);  // by name: picked
+  EXPECT_EQ(indices(select_devices(with_gpu, "all")), (std::vector<int>{1, 2}));
+  EXPECT_EQ(indices(select_devices(with_gpu, "all,oclgrind")), (std::vector<int>{1, 2, 0}));
+  EXPECT_EQ(indices(select_devices(with_gpu, "cpu,oclgrind")), (std::vector<int>{1, 0}));
+
+  // Only a CPU beside it: the CPU is the default, and "gpu" finds only the simulator.
+  const std::vector<DeviceInfo> cpu_only = {fake_simulator(0), fake_device(1, "pthread-cpu", false)};
+  EXPECT_EQ(best_device(cpu_only).index, 1);
+  EXPECT_EQ(select_device(cpu_only, "cpu").index, 1);
+  EXPECT_EQ(select_device(cpu_only, "gpu").index, 0);
+
+  // Nothing but the simulator: it is used, and its label says what it is.
+  const std::vector<DeviceInfo> alone = {fake_simulator(0)};
+  EXPECT_EQ(best_device(alone).index, 0);
+  EXPECT_EQ(select_device(alone, "cpu").index, 0);
+  EXPECT_EQ(indices(select_devices(alone, "all")), (std::vector<int>{0}));
+  EXPECT_EQ(alone[0].label(), "device 'Oclgrind Simulator' (Oclgrind, a simulator)");
+}
+
 TEST(PixelRangeQueue, HandsOutEveryPixelOnceAndTakesBackFirst) {
   PixelRangeQueue q(100);
   EXPECT_EQ(q.remaining(), 100u);

@@ -52,6 +52,9 @@ DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, c
   const auto type = device_value<cl_device_type>(id, CL_DEVICE_TYPE, self);
   d.is_gpu = (type & CL_DEVICE_TYPE_GPU) != 0;
   d.is_cpu = (type & CL_DEVICE_TYPE_CPU) != 0;
+  // Simulators known by name: Oclgrind (it reports every device-type bit).
+  d.is_simulator = lower(platform_name).find("oclgrind") != std::string::npos ||
+                   lower(d.name).find("oclgrind") != std::string::npos;
   d.type = d.is_gpu ? "GPU" : d.is_cpu ? "CPU" : (type & CL_DEVICE_TYPE_ACCELERATOR) ? "accelerator" : "other";
   d.compute_units = device_value<cl_uint>(id, CL_DEVICE_MAX_COMPUTE_UNITS, self);
   d.clock_mhz = device_value<cl_uint>(id, CL_DEVICE_MAX_CLOCK_FREQUENCY, self);
@@ -72,7 +75,9 @@ DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, c
 
 }  // namespace
 
-std::string DeviceInfo::label() const { return "device '" + name + "' (" + platform_name + ")"; }
+std::string DeviceInfo::label() const {
+  return "device '" + name + "' (" + platform_name + (is_simulator ? ", a simulator)" : ")");
+}
 
 std::vector<DeviceInfo> list_devices() {
   cl_uint platform_count = 0;
@@ -105,30 +110,50 @@ std::vector<DeviceInfo> list_devices() {
   return devices;
 }
 
-const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices) {
+namespace {
+
+// The devices of a type ("gpu" or "cpu"), real ones first in `clpt devices` order, then
+// simulators: what "gpu:N" / "cpu:N" count in.
+std::vector<const DeviceInfo*> of_type(const std::vector<DeviceInfo>& devices, bool gpu) {
+  std::vector<const DeviceInfo*> found;
+  for (bool simulators : {false, true})
+    for (const DeviceInfo& d : devices)
+      if ((gpu ? d.is_gpu : d.is_cpu) && d.is_simulator == simulators) found.push_back(&d);
+  return found;
+}
+
+// The best GPU: the largest compute_units * clock among real GPUs; null when there is none.
+const DeviceInfo* best_real_gpu(const std::vector<DeviceInfo>& devices) {
   const DeviceInfo* best = nullptr;
   for (const DeviceInfo& d : devices) {
-    if (!d.is_gpu) continue;
+    if (!d.is_gpu || d.is_simulator) continue;
     const double score = double(d.compute_units) * d.clock_mhz;
     if (!best || score > double(best->compute_units) * best->clock_mhz) best = &d;
   }
-  if (best) return *best;
-  for (const DeviceInfo& d : devices)
-    if (d.is_cpu) return d;
-  return devices.front();
+  return best;
 }
-
-namespace {
 
 // The Nth device (from 0) of a type, for "gpu:N" / "cpu:N"; null when there are fewer.
 const DeviceInfo* nth_of_type(const std::vector<DeviceInfo>& devices, bool gpu, const std::string& n) {
   if (n.empty() || n.size() > 6 || !std::all_of(n.begin(), n.end(), [](unsigned char c) { return std::isdigit(c); }))
     return nullptr;
-  size_t wanted = std::stoul(n);
-  for (const DeviceInfo& d : devices)
-    if ((gpu ? d.is_gpu : d.is_cpu) && wanted-- == 0) return &d;
-  return nullptr;
+  const size_t wanted = std::stoul(n);
+  const std::vector<const DeviceInfo*> found = of_type(devices, gpu);
+  return wanted < found.size() ? found[wanted] : nullptr;
 }
+
+}  // namespace
+
+const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices) {
+  if (const DeviceInfo* gpu = best_real_gpu(devices)) return *gpu;
+  for (const DeviceInfo& d : devices)
+    if (d.is_cpu && !d.is_simulator) return d;
+  for (const DeviceInfo& d : devices)
+    if (!d.is_simulator) return d;
+  return devices.front();
+}
+
+namespace {
 
 // One --device entry, or null when it names no device.
 const DeviceInfo* find_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
@@ -137,16 +162,17 @@ const DeviceInfo* find_device(const std::vector<DeviceInfo>& devices, const std:
   if (std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); })) {
     if (s.size() <= 9 && std::stoul(s) < devices.size()) return &devices[std::stoul(s)];
   } else if (s == "gpu") {
-    const DeviceInfo& best = best_device(devices);
-    if (best.is_gpu) return &best;
+    if (const DeviceInfo* gpu = best_real_gpu(devices)) return gpu;
+    return nth_of_type(devices, true, "0");  // a simulator, when no real GPU exists
   } else if (s == "cpu") {
-    for (const DeviceInfo& d : devices)
-      if (d.is_cpu) return &d;
+    return nth_of_type(devices, false, "0");
   } else if (s.rfind("gpu:", 0) == 0 || s.rfind("cpu:", 0) == 0) {
     return nth_of_type(devices, s[0] == 'g', s.substr(4));
   } else {
     for (const DeviceInfo& d : devices)
       if (lower(d.name).find(s) != std::string::npos) return &d;
+    for (const DeviceInfo& d : devices)
+      if (lower(d.platform_name).find(s) != std::string::npos) return &d;
   }
   return nullptr;
 }
@@ -183,7 +209,10 @@ std::vector<DeviceInfo> select_devices(const std::vector<DeviceInfo>& devices, c
     if (entry.empty())
       throw Error(ExitCode::Usage, "--device '" + spec + "': empty entry in the list; " + device_listing(devices));
     if (lower(entry) == "all") {
-      for (const DeviceInfo& d : devices) add(d, entry);
+      // Every real device; simulators are named to be used beside them ("all,oclgrind").
+      const bool any_real = std::any_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return !d.is_simulator; });
+      for (const DeviceInfo& d : devices)
+        if (!d.is_simulator || !any_real) add(d, entry);
     } else if (const DeviceInfo* d = find_device(devices, entry)) {
       add(*d, entry);
     } else {

@@ -19,6 +19,9 @@ struct DeviceInfo {
   std::string type;  // "GPU", "CPU", "accelerator", "other"
   bool is_gpu = false;
   bool is_cpu = false;
+  // A simulator (Oclgrind) rather than hardware: it may claim every device type and runs about
+  // 1000x slower, so selection prefers real devices (see best_device and select_device).
+  bool is_simulator = false;
   cl_uint compute_units = 0;
   cl_uint clock_mhz = 0;
   cl_ulong global_mem_bytes = 0;
@@ -30,24 +33,27 @@ struct DeviceInfo {
   std::string driver_version;
   std::string device_version;
 
-  // "name (platform)" for messages.
+  // "device 'NAME' (PLATFORM)" for messages; "(PLATFORM, a simulator)" for a simulator.
   std::string label() const;
 };
 
 // Every device of every platform, in platform order. Throws when there is no platform at all.
 std::vector<DeviceInfo> list_devices();
 
-// The default device: the GPU with the largest compute_units * clock, else the first CPU, else the
-// first device.
+// The default device: the real GPU with the largest compute_units * clock, else the first real
+// CPU, else the first real device; a simulator only when there is nothing else (then the first).
 const DeviceInfo& best_device(const std::vector<DeviceInfo>& devices);
 
 // Resolves a --device value: an index from `clpt devices`, "cpu" or "gpu" (the first of that type,
-// "gpu" meaning the best GPU), "cpu:N" or "gpu:N" (the Nth device of that type, from 0, in
-// `clpt devices` order), "best", or a case-insensitive substring of the device name.
+// "gpu" meaning the best GPU), "cpu:N" or "gpu:N" (the Nth device of that type, from 0: real
+// devices in `clpt devices` order, then simulators), "best", or a case-insensitive substring of
+// the device or platform name (e.g. "oclgrind"). "cpu" and "gpu" pick a simulator only when no
+// real device of that type exists.
 // Throws Error(Usage) naming the option and listing the devices when nothing matches.
 const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec);
 
-// Resolves a --device value that may name several devices: "all" (every device), or a comma list
+// Resolves a --device value that may name several devices: "all" (every real device; every
+// simulator too only when there is no real device), or a comma list
 // of select_device entries ("0,1", "gpu:0,cpu"). A single entry resolves exactly as
 // select_device. Throws Error(Usage) naming --device and the bad entry, and listing the devices,
 // for an entry that matches nothing, an empty entry, or a device listed twice.

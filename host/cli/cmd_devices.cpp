@@ -17,7 +17,9 @@ std::function<int()> add_devices_command(CLI::App& app) {
         platform = d.platform_name;
         std::printf("platform: %s\n", platform.c_str());
       }
-      std::printf("  [%d] %s %s%s\n", d.index, d.type.c_str(), d.name.c_str(),
+      // A simulator is marked: it is used only when named or when nothing else exists.
+      std::printf("  [%d] %s %s%s%s\n", d.index, d.type.c_str(), d.name.c_str(),
+                  d.is_simulator ? "   (simulator: used when named, or when no real device exists)" : "",
                   d.index == best.index ? "   (default)" : "");
       std::printf("      vendor %s, %u compute units at %u MHz\n", d.vendor.c_str(), d.compute_units,
                   d.clock_mhz);

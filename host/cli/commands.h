@@ -13,6 +13,7 @@ std::function<int()> add_devices_command(CLI::App& app);
 std::function<int()> add_bench_command(CLI::App& app);
 std::function<int()> add_cache_command(CLI::App& app);
 std::function<int()> add_scene_transform_command(CLI::App& app);
+std::function<int()> add_kernels_command(CLI::App& app);
 #ifdef CLPT_WITH_OIIO
 std::function<int()> add_compare_command(CLI::App& app);
 std::function<int()> add_tradeoff_command(CLI::App& app);

@@ -1,0 +1,66 @@
+// `clpt kernels list` and `clpt kernels emit DIR --scene scenes/diffuse.toml`: the covering set of
+// kernel variants (host/tools/kernel_variants.h), for the test tiers that check every variant on
+// another OpenCL implementation (Oclgrind) and with GPU compilers (scripts/gpu_compile.sh).
+// `emit` writes, per variant, the program's whole source (includes expanded, as clpt hands it
+// to a driver) as NAME.cl and its build options as NAME.options, plus variants.txt listing the
+// names in order, each file atomically.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "cli/commands.h"
+#include "kernels/kernel_source.h"
+#include "scene/scene_loader.h"
+#include "tools/kernel_variants.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+struct KernelsOptions {
+  std::string directory;
+  std::string scene;
+};
+
+int list_variants() {
+  const auto variants = covering_kernel_variants();
+  for (const KernelVariant& v : variants) std::printf("%s\n", v.name().c_str());
+  std::fprintf(stderr, "%zu variants cover every value and every pair of values of %zu dimensions\n",
+               variants.size(), kernel_variant_dimensions().size());
+  return 0;
+}
+
+int emit_variants(const KernelsOptions& o) {
+  if (!std::filesystem::is_directory(o.directory))
+    throw Error(ExitCode::Usage, "kernels emit: directory '" + o.directory + "' does not exist");
+  const Scene diffuse = load_scene_file(o.scene);
+  std::string names;
+  for (const KernelVariant& v : covering_kernel_variants()) {
+    const VariantProgram program = variant_program(variant_scene(diffuse, v), v);
+    const std::string base = (std::filesystem::path(o.directory) / v.name()).string();
+    write_file_atomically(base + ".cl", assemble_kernel_source(program.entry_file), "kernel source");
+    write_file_atomically(base + ".options", kernel_build_options(program.features) + "\n", "build options");
+    names += v.name() + " " + program.entry_file + "\n";
+  }
+  write_file_atomically((std::filesystem::path(o.directory) / "variants.txt").string(), names, "variant list");
+  return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_kernels_command(CLI::App& app) {
+  auto o = std::make_shared<KernelsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "kernels", "The covering set of kernel variants: `list` their names, `emit` their sources and build options");
+  cmd->require_subcommand(1);
+  CLI::App* list = cmd->add_subcommand("list", "Print the variants' names, one a line");
+  CLI::App* emit = cmd->add_subcommand(
+      "emit", "Write NAME.cl (whole source) and NAME.options (build options) per variant, and variants.txt, into DIR");
+  emit->add_option("dir", o->directory, "Existing output directory")->required();
+  emit->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml): variants change its balls")
+      ->required();
+  return [o, list] { return list->parsed() ? list_variants() : emit_variants(*o); };
+}
+
+}  // namespace clpt

@@ -1,0 +1,168 @@
+#include "tools/kernel_variants.h"
+
+#include <set>
+#include <tuple>
+
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+// Dimension positions in KernelVariant::choice.
+enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kPhong, kGlass, kDimCount };
+
+// (dimension a, value of a, dimension b, value of b) with a < b.
+using Pair = std::tuple<int, int, int, int>;
+
+std::set<Pair> all_pairs() {
+  const auto& dims = kernel_variant_dimensions();
+  std::set<Pair> pairs;
+  for (int a = 0; a < int(dims.size()); ++a)
+    for (int b = a + 1; b < int(dims.size()); ++b)
+      for (int va = 0; va < int(dims[a].values.size()); ++va)
+        for (int vb = 0; vb < int(dims[b].values.size()); ++vb) pairs.insert({a, va, b, vb});
+  return pairs;
+}
+
+std::vector<Pair> pairs_of(const std::vector<int>& choice) {
+  std::vector<Pair> pairs;
+  for (int a = 0; a < int(choice.size()); ++a)
+    for (int b = a + 1; b < int(choice.size()); ++b) pairs.push_back({a, choice[a], b, choice[b]});
+  return pairs;
+}
+
+Material phong_ball() {  // the specular scene's left ball
+  Material m;
+  m.type = MaterialType::Phong;
+  m.reflectance = {0.999, 0.999, 0.999};
+  m.phong_exponent = 100;
+  return m;
+}
+
+Material glass_ball() {  // the glass scene's right ball
+  Material m;
+  m.type = MaterialType::Glass;
+  m.reflectance = {0.999999, 0.999999, 0.999999};
+  m.ior = 1.5;
+  return m;
+}
+
+}  // namespace
+
+const std::vector<VariantDimension>& kernel_variant_dimensions() {
+  static const std::vector<VariantDimension> dims = {
+      {"form", {"megakernel-path", "megakernel-lockstep", "wavefront"}},
+      {"precision", {"robust", "fast", "double"}},
+      {"estimator", {"book", "nee"}},
+      {"russian-roulette", {"no-rr", "rr"}},
+      {"specialisation", {"specialised", "generic"}},
+      {"phong", {"no-phong", "phong"}},
+      {"glass", {"no-glass", "glass"}},
+  };
+  static_assert(kDimCount == 7, "one entry per Dim");
+  return dims;
+}
+
+ExecutionForm KernelVariant::form() const {
+  return choice[kForm] == 2 ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
+}
+MegakernelLoop KernelVariant::megakernel_loop() const {
+  return choice[kForm] == 1 ? MegakernelLoop::Lockstep : MegakernelLoop::PerPath;
+}
+Precision KernelVariant::precision() const {
+  return choice[kPrecision] == 1 ? Precision::Fast : choice[kPrecision] == 2 ? Precision::Double : Precision::Robust;
+}
+Estimator KernelVariant::estimator() const { return choice[kEstimator] == 1 ? Estimator::Nee : Estimator::Book; }
+bool KernelVariant::russian_roulette() const { return choice[kRussianRoulette] == 1; }
+bool KernelVariant::generic() const { return choice[kSpecialisation] == 1; }
+bool KernelVariant::has_phong() const { return choice[kPhong] == 1; }
+bool KernelVariant::has_glass() const { return choice[kGlass] == 1; }
+
+std::string KernelVariant::name() const {
+  const auto& dims = kernel_variant_dimensions();
+  std::string n;
+  for (size_t d = 0; d < dims.size(); ++d) n += (d ? "." : "") + dims[d].values[size_t(choice[d])];
+  return n;
+}
+
+std::vector<KernelVariant> covering_kernel_variants() {
+  const auto& dims = kernel_variant_dimensions();
+  // Every full combination, in odometer order (the last dimension fastest): the candidates.
+  std::vector<std::vector<int>> candidates{{}};
+  for (const VariantDimension& d : dims) {
+    std::vector<std::vector<int>> longer;
+    for (const auto& c : candidates)
+      for (int v = 0; v < int(d.values.size()); ++v) {
+        longer.push_back(c);
+        longer.back().push_back(v);
+      }
+    candidates = std::move(longer);
+  }
+  std::set<Pair> uncovered = all_pairs();
+  std::vector<KernelVariant> chosen;
+  while (!uncovered.empty()) {
+    const std::vector<int>* best = nullptr;
+    size_t best_gain = 0;
+    for (const auto& c : candidates) {
+      size_t gain = 0;
+      for (const Pair& p : pairs_of(c)) gain += uncovered.count(p);
+      if (gain > best_gain) best = &c, best_gain = gain;  // first of the best: deterministic
+    }
+    for (const Pair& p : pairs_of(*best)) uncovered.erase(p);
+    chosen.push_back(KernelVariant{*best});
+  }
+  return chosen;
+}
+
+std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& variants) {
+  std::set<Pair> uncovered = all_pairs();
+  for (const KernelVariant& v : variants)
+    for (const Pair& p : pairs_of(v.choice)) uncovered.erase(p);
+  const auto& dims = kernel_variant_dimensions();
+  std::vector<std::string> out;
+  for (const auto& [a, va, b, vb] : uncovered)
+    out.push_back(dims[size_t(a)].name + "=" + dims[size_t(a)].values[size_t(va)] + " + " + dims[size_t(b)].name +
+                  "=" + dims[size_t(b)].values[size_t(vb)]);
+  return out;
+}
+
+Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
+  Scene scene = diffuse;
+  bool left = false, right = false;
+  for (Sphere& s : scene.spheres) {
+    if (s.name == "left_ball") {
+      left = true;
+      if (variant.has_phong()) s.material = phong_ball();
+    } else if (s.name == "right_ball") {
+      right = true;
+      if (variant.has_glass()) s.material = glass_ball();
+    }
+  }
+  if (!left || !right)
+    throw Error(ExitCode::Failure, "kernel variants are built from the book's diffuse scene "
+                                   "(spheres named left_ball and right_ball); this scene lacks them");
+  scene.settings.estimator = estimator_name(variant.estimator());
+  scene.settings.rr_from = variant.russian_roulette() ? 2 : -1;
+  return scene;
+}
+
+void apply_variant(const KernelVariant& variant, RenderRequest& request) {
+  request.scene = variant_scene(request.scene, variant);
+  request.form = variant.form();
+  request.megakernel_loop = variant.megakernel_loop();
+  request.precision = variant.precision();
+  request.generic_kernel = variant.generic();
+}
+
+VariantProgram variant_program(const Scene& scene, const KernelVariant& variant) {
+  VariantProgram p;
+  p.entry_file = variant.form() == ExecutionForm::Wavefront ? "wavefront.cl" : "megakernel.cl";
+  p.features = variant.generic() ? generic_features(variant.precision())
+                                 : features_for_scene(scene, variant.precision());
+  p.features.megakernel_loop = variant.megakernel_loop();
+  if (variant.form() == ExecutionForm::Megakernel && variant.megakernel_loop() == MegakernelLoop::Lockstep)
+    p.features.lockstep_group = kDefaultLockstepGroup;
+  return p;
+}
+
+}  // namespace clpt
