@@ -3,7 +3,7 @@
  * Each sampler takes the incoming ray direction `d` (unit, travelling towards the surface), the
  * outward unit normal `n` and uniforms `u`, and returns the next direction; *weight receives
  * f cos / pdf, the factor by which the path throughput is multiplied (0 ends the path).
- * The estimator is the book's (gemspt-scenes.md section 3):
+ * The estimator is the book's (docs/book-scenes.md, "The estimator"):
  *  - Lambertian: cosine-weighted around the normal facing the ray; weight rho.
  *  - Normalised Phong: f = rho (n+2)/(2 pi) cos^n(alpha) around the mirror direction, sampled
  *    from the cos^n lobe, weight rho (n+2)/(n+1) cos(theta_out); 0 below the surface.

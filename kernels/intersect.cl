@@ -1,7 +1,7 @@
 /* intersect.cl: ray/sphere and ray/scene closest hit.
  *
  * Float32 that stays accurate on the book's radius-1e5 walls and its unit balls alike
- * (numerics.md, measured on this scene):
+ * (docs/numerics.md, measured on this scene):
  *  - Each sphere is given by a surface point s0 near the scene, the outward normal n0 there and
  *    the radius r (centre c = s0 - r n0, computed on the host in double). With e = s0 - o:
  *      c'  = |c - o|^2 - r^2 = |e|^2 - 2 r (n0 . e)          (no term of size r^2)

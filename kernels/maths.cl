@@ -7,7 +7,7 @@
  * vector type, and stage functions are always inlined (a call also stops the vectoriser).
  *
  * unit_circle() replaces sin/cos: PoCL's accurate libm sin/cos took two thirds of a naive
- * path-tracing kernel's time (numerics.md). A quadrant reduction plus short Taylor polynomials
+ * path-tracing kernel's time (docs/numerics.md). A quadrant reduction plus short Taylor polynomials
  * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free.
  *
  * Precision presets (host/kernels/kernel_options.cpp decides; README "Precision presets"):
@@ -165,7 +165,7 @@ CLPT_INLINE Vec3 to_world(Vec3 local_dir, Vec3 n) {
 }
 
 /* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
- * may fold `x != x` to false (numerics.md). */
+ * may fold `x != x` to false (docs/numerics.md). */
 CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 CLPT_INLINE bool is_finite_real(double x) {

@@ -30,7 +30,7 @@ typedef uint32_t clpt_u32;
 /* One sphere and its material: 96 bytes.
  * The sphere is stored as a point s0 on its surface near the scene, the outward unit normal n0
  * there, and the radius, so that the centre is s0 - radius * n0. The intersection then never
- * forms a term of size radius^2 (numerics.md: radius-1e5 walls keep their precision).
+ * forms a term of size radius^2 (docs/numerics.md: radius-1e5 walls keep their precision).
  * Each geometric value is a float plus the float of its remainder (*_lo: value - (double)float):
  * float kernels read the first, the double preset adds both and so sees the host's double values
  * to about 48 bits (a sphere 1e6 radii from the camera rounded to float alone moved by 6% of its

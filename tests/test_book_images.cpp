@@ -1,6 +1,6 @@
 // The book's three scenes rendered by clpt match converged renders of the book's own renderer
 // (gemspt) in region means: walls, floor, ceiling, light, both balls and a shadow. An image mean
-// alone is not enough (numerics.md: a mean that was right hid a ball 20% too dark). Every
+// alone is not enough (docs/numerics.md: a mean that was right hid a ball 20% too dark). Every
 // estimator must converge to the book's image at the same path-length limit, so each variant
 // (the book's estimator, next-event estimation, either with Russian roulette) is held to the same
 // references.

@@ -1,5 +1,5 @@
 // The book's pinhole camera: directions of pixel corners and the centre, against the book's
-// construction computed here in double (gemspt-scenes.md section 2).
+// construction computed here in double (docs/book-scenes.md, "The camera").
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Float32 sphere intersection on the device, at the cases numerics.md measured as failing for
+// Float32 sphere intersection on the device, at the cases docs/numerics.md measured as failing for
 // the textbook formula: a unit sphere far away, the book's radius-1e5 walls and its unit balls
 // (hit distance, and new rays re-leaving a surface without hitting it again), and the corners
 // where walls meet. The reference is the same geometry in double precision on the host.
@@ -79,7 +79,7 @@ Vec3 random_cosine_direction(std::mt19937& rng, const Vec3& n) {
   }
 }
 
-// numerics.md: the textbook formula got 46% of hit/miss answers wrong on a unit sphere 1e4 away.
+// docs/numerics.md: the textbook formula got 46% of hit/miss answers wrong on a unit sphere 1e4 away.
 TEST(SphereIntersect, UnitSphereFarAway) {
   Scene scene;
   scene.camera.position = {0, 0, 0};
@@ -135,7 +135,7 @@ TEST(SphereIntersect, BookSceneHitDistances) {
 }
 
 // From hit points on every wall and ball, new Lambertian-distributed rays must not hit the
-// surface they leave. numerics.md measured 8-27% self-hits on the walls for tmin-only fixes of the
+// surface they leave. docs/numerics.md measured 8-27% self-hits on the walls for tmin-only fixes of the
 // textbook formula. The formula alone (skip = -1) leaves only grazing rays, whose near-zero root's
 // error (about 1e-6 / cos(theta) on a wall) can exceed ray_epsilon: at most 1e-3 of the rays. With
 // the sphere they leave named, as the renderer does, none.

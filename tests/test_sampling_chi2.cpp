@@ -1,5 +1,5 @@
 // Chi-square goodness of fit of the direction samplers the renderer uses (pbrt-v4 / Mitsuba 3
-// recipe, numerics.md): 1e6 samples from the device into (theta, phi) bins, expected counts from
+// recipe, docs/numerics.md): 1e6 samples from the device into (theta, phi) bins, expected counts from
 // the analytic pdf integrated over each bin, cells with expected count < 5 pooled, alpha 0.01
 // Sidak-corrected over the tests in this file.
 #include <gtest/gtest.h>

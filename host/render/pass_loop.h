@@ -2,7 +2,7 @@
 // or the time budget is reached, or an interrupt is requested. Each pass is traced by the devices
 // of a DevicePool in launches over pixel ranges; on the megakernel each launch is sized from the
 // measured throughput to take about a target time, so no launch runs into a display GPU's
-// watchdog (numerics.md, "Watchdogs").
+// watchdog (docs/numerics.md, "Watchdogs").
 #pragma once
 
 #include <atomic>

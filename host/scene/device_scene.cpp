@@ -88,7 +88,7 @@ std::vector<GpuLight> light_caps(const Scene& scene) {
 }
 
 double ray_epsilon_for(const Camera& camera, Precision precision) {
-  // Float: 1e-5 of the view distance, measured on the book's scene (numerics.md). Double rounds
+  // Float: 1e-5 of the view distance, measured on the book's scene (docs/numerics.md). Double rounds
   // 2^29 times finer, so its epsilon is that much smaller: otherwise a ball far away, with the
   // look-at point on it, would skip hits closer than 1e-5 of its distance, i.e. its own interior.
   const double scale = precision == Precision::Double ? 0x1p-29 : 1.0;

@@ -47,7 +47,7 @@ LightSampling light_sampling_of(const RenderSettings& settings);  // from settin
 std::vector<GpuLight> light_caps(const Scene& scene);
 
 // Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
-// the value numerics.md measured as robust there), so it scales with the scene; 2^-29 of that for
+// the value docs/numerics.md measured as robust there), so it scales with the scene; 2^-29 of that for
 // the double preset.
 double ray_epsilon_for(const Camera& camera, Precision precision = Precision::Robust);
 
