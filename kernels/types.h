@@ -156,4 +156,24 @@ typedef struct GpuPixelPass {
 
 #define CLPT_LAYOUT_STRUCTS(X) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
 
+/* The sizes stated above, checked when each side compiles this header: by static_assert on the
+ * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
+ * 1.2 has no static_assert), so a drifted struct fails the build of the host or of every kernel.
+ * StructLayout.HostMatchesDevice then compares every field's offset at run time. */
+#ifdef __OPENCL_C_VERSION__
+#define CLPT_CHECK_SIZE(T, bytes) typedef char clpt_size_check_##T[(sizeof(T) == (bytes)) ? 1 : -1];
+#else
+#include <type_traits>
+#define CLPT_CHECK_SIZE(T, bytes)                                                       \
+  static_assert(sizeof(T) == (bytes), #T " must be " #bytes " bytes on both sides"); \
+  static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>,    \
+                #T " is copied to the device byte for byte");
+#endif
+CLPT_CHECK_SIZE(GpuSphere, 96)
+CLPT_CHECK_SIZE(GpuLight, 32)
+CLPT_CHECK_SIZE(GpuCamera, 48)
+CLPT_CHECK_SIZE(GpuRenderParams, 112)
+CLPT_CHECK_SIZE(GpuPixelPass, 32)
+#undef CLPT_CHECK_SIZE
+
 #endif /* CLPT_TYPES_H */

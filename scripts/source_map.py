@@ -6,7 +6,8 @@
 
 A header and its implementation (foo.h, foo.cpp) share one entry, described by whichever of them
 opens with a comment. The opening comment is the first comment block of the file (after a `#!`
-line), up to its first blank comment line; `//`, `/* */` and `#` comments are read. A file (or
+line), up to its first blank comment line; `//`, `/* */`, `#` comments and Python docstrings
+are read. A file (or
 pair) without one is an error: every file says what it is for. Only files git tracks are mapped,
 so build products never appear.
 """
@@ -16,7 +17,7 @@ import subprocess
 import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MAP = os.path.join(ROOT, "docs", "source-map.md")
+MAP = os.path.join(ROOT, "docs/source-map.md")
 # Where the code lives, in the order the map lists it.
 AREAS = ["host", "kernels", "tests", "scripts", "cmake", ".ci"]
 SOURCE = re.compile(r"\.(h|hpp|cpp|cl|sh|cmake|py)$|(^|/)(run|CMakeLists\.txt)$")
@@ -36,7 +37,13 @@ def opening_comment(path):
     if lines and lines[0].startswith("#!"):
         lines = lines[1:]
     words = []
-    if lines and lines[0].lstrip().startswith("/*"):
+    if lines and lines[0].startswith('"""'):  # a Python docstring
+        for line in lines:
+            text = line.strip().strip('"').strip()
+            if not text:
+                break
+            words.append(text)
+    elif lines and lines[0].lstrip().startswith("/*"):
         for line in lines:
             text = line.strip()
             end = "*/" in text

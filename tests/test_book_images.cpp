@@ -18,7 +18,7 @@
 #include <sstream>
 
 #include "device_test_util.h"
-#include "io/image_io.h"
+#include "io/render_file.h"
 #include "render_test_util.h"
 
 namespace clpt::test {
@@ -47,16 +47,11 @@ void PrintTo(const Variant& v, std::ostream* os) { *os << v.name; }
 void compare_with_gemspt(const std::string& scene_name, const Variant& variant) {
   const std::string ref_path = source_dir() + "/tests/reference/gemspt_" + scene_name + "_160x120.exr";
   ASSERT_TRUE(std::filesystem::exists(ref_path)) << "missing reference " << ref_path;
-  const LoadedImage ref = read_image(ref_path);
-  ASSERT_EQ(ref.width, kWidth);
-  ASSERT_EQ(ref.height, kHeight);
-  const int channels = int(ref.channels.size());
-  std::vector<float> ref_mean, ref_var;
-  for (size_t p = 0; p < size_t(kWidth) * kHeight; ++p)
-    for (const char* c : {"R", "G", "B"}) {
-      ref_mean.push_back(ref.pixels[p * channels + ref.channel(c)]);
-      ref_var.push_back(ref.pixels[p * channels + ref.channel(std::string("variance.") + c)]);
-    }
+  const RenderFile ref = read_render_file(ref_path);
+  ASSERT_EQ(ref.image.width, kWidth);
+  ASSERT_EQ(ref.image.height, kHeight);
+  const std::vector<float>& ref_mean = ref.image.mean;
+  const std::vector<float>& ref_var = ref.image.variance;
 
   Scene scene = load_book_scene(scene_name);
   scene.settings.estimator = variant.estimator;

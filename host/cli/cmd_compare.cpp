@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "io/image_io.h"
+#include "io/render_file.h"
 #include "util/atomic_file.h"
 #include "tools/image_compare.h"
 #include "util/error.h"
@@ -25,57 +26,12 @@ struct CompareCommandOptions {
   CompareOptions test;
 };
 
-// The channels named `names` of `img`, 3 floats a pixel. A missing channel is a usage error that
-// names the file and the channel.
-std::vector<float> take_rgb(const LoadedImage& img, const std::string& path, const std::string (&names)[3]) {
-  int index[3];
-  for (int c = 0; c < 3; ++c) {
-    index[c] = img.channel(names[c]);
-    if (index[c] < 0)
-      throw Error(ExitCode::Usage, path + ": no channel '" + names[c] + "'; compare needs the mean (R, G, B) "
-                                   "and its variance (variance.R, variance.G, variance.B) as `clpt render` "
-                                   "writes them");
-  }
-  const size_t pixels = size_t(img.width) * img.height, stride = img.channels.size();
-  std::vector<float> rgb(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) rgb[p * 3 + c] = img.pixels[p * stride + index[c]];
-  return rgb;
-}
-
-std::optional<uint64_t> spp_from_metadata(const ImageMetadata& metadata) {
-  const auto it = metadata.find("clpt:spp");
-  if (it == metadata.end()) return std::nullopt;
-  try {
-    return uint64_t(std::stoull(it->second));
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
-// A clpt EXR (mean and variance channels), or a raw NAME.pfm film with its NAME.var.pfm beside it.
+// A render file (io/render_file.h): a clpt EXR, or a raw NAME.pfm film with NAME.var.pfm.
 MeanVarianceImage load_render(const std::string& path, ComparedFile& info) {
-  static const std::string kMean[3] = {"R", "G", "B"};
-  static const std::string kVariance[3] = {"variance.R", "variance.G", "variance.B"};
-  const LoadedImage img = read_image(path);
-  MeanVarianceImage out;
-  out.width = img.width;
-  out.height = img.height;
-  out.mean = take_rgb(img, path, kMean);
+  RenderFile file = read_render_file(path);
   info.path = path;
-  info.spp = spp_from_metadata(img.metadata);
-  if (std::filesystem::path(path).extension() != ".pfm") {
-    out.variance = take_rgb(img, path, kVariance);
-    return out;
-  }
-  const std::string variance_path = std::filesystem::path(path).replace_extension(".var.pfm").string();
-  if (!std::filesystem::exists(variance_path))
-    throw Error(ExitCode::Usage, path + ": no variance file " + variance_path + " beside this raw film");
-  const LoadedImage variance = read_image(variance_path);
-  if (variance.width != img.width || variance.height != img.height)
-    throw Error(ExitCode::Usage, variance_path + ": its size differs from " + path);
-  out.variance = take_rgb(variance, variance_path, kMean);
-  return out;
+  info.spp = file.info.spp;
+  return std::move(file.image);
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {

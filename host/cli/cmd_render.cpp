@@ -19,6 +19,7 @@
 #include "util/interrupt.h"
 #ifdef CLPT_WITH_OIIO
 #include "io/image_io.h"
+#include "io/render_file.h"
 #endif
 
 namespace clpt {
@@ -97,22 +98,21 @@ void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] c
     written += " (and its .var.pfm)";
   } else {
 #ifdef CLPT_WITH_OIIO
-    ImageMetadata metadata = {
-        {"clpt:version", CLPT_VERSION},
-        {"clpt:spp", std::to_string(report.spp)},
-        {"clpt:seed", std::to_string(scene.settings.seed)},
-        {"clpt:scene", scene.file},
-        {"clpt:scene_hash", scene.file_hash},
-        {"clpt:device", report.device},
-        {"clpt:precision", precision_name(report.precision)},
-        {"clpt:rr_from", std::to_string(scene.settings.rr_from)},
-        {"clpt:estimator", scene.settings.estimator},
-        {"clpt:sampler", sampler_name(scene.settings.sampler)},
-        {"clpt:max_bounces", std::to_string(scene.settings.max_bounces)},
-        {"clpt:dropped_samples", std::to_string(report.dropped)},
-    };
-    if (report.interrupted) metadata["clpt:interrupted"] = "1";  // clpt:spp: the finished passes
-    written += " and " + write_render_outputs(path, film, metadata);
+    RenderFileInfo info;
+    info.version = CLPT_VERSION;
+    info.spp = report.spp;  // interrupted: the finished passes
+    info.seed = scene.settings.seed;
+    info.scene = scene.file;
+    info.scene_hash = scene.file_hash;
+    info.device = report.device;
+    info.precision = precision_name(report.precision);
+    info.rr_from = scene.settings.rr_from;
+    info.estimator = scene.settings.estimator;
+    info.sampler = sampler_name(scene.settings.sampler);
+    info.max_bounces = uint64_t(scene.settings.max_bounces);
+    info.dropped_samples = report.dropped;
+    info.interrupted = report.interrupted;
+    written += " and " + write_render_file(path, film, info);
 #endif
   }
   if (!quiet) std::printf("wrote %s\n", written.c_str());

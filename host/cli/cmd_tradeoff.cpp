@@ -14,6 +14,7 @@
 #include "cl/cl_device.h"
 #include "cli/commands.h"
 #include "io/image_io.h"
+#include "io/render_file.h"
 #include "kernels/kernel_options.h"
 #include "render/limits.h"
 #include "render/render_session.h"
@@ -97,83 +98,38 @@ std::vector<double> budgets_from(const TradeoffOptions& o) {
   }
 }
 
-// The reference's mean and variance channels, checked against the render size.
+// The reference (io/render_file.h) as the error measures read it.
 struct LoadedReference {
   MeanVarianceImage image;
   TradeoffReference info;
-  ImageMetadata metadata;
+  RenderFileInfo file;
 };
 
-std::optional<uint64_t> metadata_number(const ImageMetadata& metadata, const std::string& key) {
-  const auto it = metadata.find(key);
-  if (it == metadata.end()) return std::nullopt;
-  try {
-    return uint64_t(std::stoull(it->second));
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-}
-
-LoadedImage read_reference(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw Error(ExitCode::Usage, "--reference " + path + ": no such file");
-  LoadedImage img;
-  try {
-    img = read_image(path);
-  } catch (const Error& e) {
-    throw Error(ExitCode::Usage, "--reference " + std::string(e.what()));
-  }
-  static const char* const kNames[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  int index[6];
-  for (int c = 0; c < 6; ++c) {
-    index[c] = img.channel(kNames[c]);
-    if (index[c] < 0)
-      throw Error(ExitCode::Usage, "--reference " + path + ": no channel '" + kNames[c] +
-                                       "'; tradeoff needs the mean (R, G, B) and its variance (variance.R, "
-                                       "variance.G, variance.B) as `clpt render` writes them");
-  }
-  return img;
-}
-
-// The reference as the error measures read it; its size must be the renders'.
-LoadedReference load_reference(const std::string& path, const LoadedImage& img, int width, int height) {
-  static const char* const kNames[6] = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
-  int index[6];
-  for (int c = 0; c < 6; ++c) index[c] = img.channel(kNames[c]);
-  if (img.width != width || img.height != height)
-    throw Error(ExitCode::Usage, "--reference " + path + " is " + std::to_string(img.width) + "x" +
-                                     std::to_string(img.height) + " but the renders are " + std::to_string(width) +
-                                     "x" + std::to_string(height) +
+// Its size must be the renders'.
+LoadedReference load_reference(const std::string& path, RenderFile file, int width, int height) {
+  if (file.image.width != width || file.image.height != height)
+    throw Error(ExitCode::Usage, "--reference " + path + " is " + std::to_string(file.image.width) + "x" +
+                                     std::to_string(file.image.height) + " but the renders are " +
+                                     std::to_string(width) + "x" + std::to_string(height) +
                                      ": they must be the same size (set --width and --height)");
   LoadedReference ref;
-  ref.image.width = width;
-  ref.image.height = height;
-  const size_t pixels = size_t(width) * height, stride = img.channels.size();
-  ref.image.mean.resize(pixels * 3);
-  ref.image.variance.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) {
-      ref.image.mean[p * 3 + c] = img.pixels[p * stride + index[c]];
-      ref.image.variance[p * 3 + c] = img.pixels[p * stride + index[c + 3]];
-    }
-  ref.info = {path, width, height, metadata_number(img.metadata, "clpt:spp"), noise_rms(ref.image)};
-  ref.metadata = img.metadata;
+  ref.image = std::move(file.image);
+  ref.info = {path, width, height, file.info.spp, noise_rms(ref.image)};
+  ref.file = std::move(file.info);
   return ref;
 }
 
 // A reference made from another scene file or path length measures a different image: say so.
 void warn_about_mismatches(const LoadedReference& ref, const Scene& scene) {
-  const auto hash = ref.metadata.find("clpt:scene_hash");
-  if (hash != ref.metadata.end() && hash->second != scene.file_hash)
+  if (!ref.file.scene_hash.empty() && ref.file.scene_hash != scene.file_hash)
     std::fprintf(stderr, "clpt: warning: --reference %s was rendered from another scene file (clpt:scene_hash %s, "
                          "%s has %s): its bias figures compare different images\n",
-                 ref.info.path.c_str(), hash->second.c_str(), scene.file.c_str(), scene.file_hash.c_str());
-  const auto sampler = ref.metadata.find("clpt:sampler");
-  if (sampler != ref.metadata.end() && sampler->second != sampler_name(scene.settings.sampler))
+                 ref.info.path.c_str(), ref.file.scene_hash.c_str(), scene.file.c_str(), scene.file_hash.c_str());
+  if (!ref.file.sampler.empty() && ref.file.sampler != sampler_name(scene.settings.sampler))
     std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but the renders use %s: the two "
                          "converge to different pixel filters, which shows as bias (set --sampler)\n",
-                 ref.info.path.c_str(), sampler->second.c_str(), sampler_name(scene.settings.sampler));
-  const auto bounces = metadata_number(ref.metadata, "clpt:max_bounces");
+                 ref.info.path.c_str(), ref.file.sampler.c_str(), sampler_name(scene.settings.sampler));
+  const std::optional<uint64_t> bounces = ref.file.max_bounces;
   if (bounces && *bounces != uint64_t(scene.settings.max_bounces))
     std::fprintf(stderr, "clpt: warning: --reference %s has max_bounces %llu but the renders %d: the "
                          "truncation differs, which shows as bias\n",
@@ -184,7 +140,7 @@ void warn_about_mismatches(const LoadedReference& ref, const Scene& scene) {
 // repeat its first samples and look closer to it than they are. An explicit --seed equal to the
 // reference's is an error; the scene's own seed moves on by one.
 uint64_t choose_seed(const TradeoffOptions& o, const Scene& scene, const LoadedReference& ref, bool& moved) {
-  const std::optional<uint64_t> ref_seed = metadata_number(ref.metadata, "clpt:seed");
+  const std::optional<uint64_t> ref_seed = ref.file.seed;
   moved = false;
   if (o.seed) {
     if (ref_seed && *o.seed == *ref_seed)
@@ -316,17 +272,17 @@ int run(const TradeoffOptions& o) {
   const std::vector<double> budgets = budgets_from(o);
   const std::optional<TargetFrom> target_from = target_from_option(o.target_from);
   Scene scene = load_scene_file(o.scene_path);
-  const LoadedImage reference_image = read_reference(o.reference_path);
+  RenderFile reference_file = read_render_file(o.reference_path, "--reference " + o.reference_path);
   if (!o.width && !o.height) {  // the renders take the reference's size unless told otherwise
-    scene.settings.width = reference_image.width;
-    scene.settings.height = reference_image.height;
+    scene.settings.width = reference_file.image.width;
+    scene.settings.height = reference_file.image.height;
   }
   apply_overrides(o, scene);
   if (target_from && target_from->spp % sampler_granularity(scene) != 0)
     throw Error(ExitCode::Usage, "--target-from " + o.target_from + ": the scene's grid sampler needs a "
                                  "multiple of 16 samples per pixel");
   const LoadedReference ref =
-      load_reference(o.reference_path, reference_image, scene.settings.width, scene.settings.height);
+      load_reference(o.reference_path, std::move(reference_file), scene.settings.width, scene.settings.height);
   warn_about_mismatches(ref, scene);
   bool seed_moved = false;
   scene.settings.seed = choose_seed(o, scene, ref, seed_moved);

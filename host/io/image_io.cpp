@@ -1,5 +1,7 @@
 #include "io/image_io.h"
 
+#include "io/render_file.h"
+
 #include <dlfcn.h>
 
 #include <algorithm>
@@ -151,7 +153,8 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
   ImageToWrite exr;
   exr.width = w;
   exr.height = h;
-  exr.channels = {"R", "G", "B", "variance.R", "variance.G", "variance.B"};
+  exr.channels.assign(std::begin(kMeanChannels), std::end(kMeanChannels));
+  exr.channels.insert(exr.channels.end(), std::begin(kVarianceChannels), std::end(kVarianceChannels));
   exr.pixels = pixels.data();
   exr.compression = "zip";
   exr.metadata = metadata;
@@ -187,6 +190,8 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb) {
   commit_temporary(write_temporary(path, rgb8_image(width, height, rgb)), path);
 }
+
+void check_image_reader(const std::string& path) { codec(ExitCode::Usage, path); }
 
 LoadedImage read_image(const std::string& path) {
   const ImageCodec& c = codec(ExitCode::Usage, path);

@@ -25,13 +25,18 @@ void preload_image_io();
 // module is nowhere to be found; cheap (no loading). A render calls it before any work.
 void check_image_io_module(const std::string& what);
 
-// Writes the EXR at `exr_path` and the PNG preview with the same stem (the two at once). Returns
-// the PNG path. Throws Error(OutputError) naming the file.
+// Writes the EXR at `exr_path` (channels and metadata as io/render_file.h lays them down; call
+// write_render_file there) and the PNG preview with the same stem (the two at once). Returns the
+// PNG path. Throws Error(OutputError) naming the file.
 std::string write_render_outputs(const std::string& exr_path, const Film& film,
                                  const ImageMetadata& metadata);
 
 // Writes an 8-bit RGB PNG (or any format the extension names), atomically.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
+
+// Loads the OpenImageIO module for reading `path`, or throws Error(Usage) naming the path and the
+// module paths tried: a broken installation is reported before any question about the file.
+void check_image_reader(const std::string& path);
 
 // Reads any image OIIO can read. Throws Error(Usage) naming the file on failure.
 LoadedImage read_image(const std::string& path);

@@ -11,6 +11,15 @@
 
 namespace clpt {
 
+// A render as the statistics see it: per pixel the mean and the variance of the mean, RGB
+// interleaved (3 floats a pixel), row 0 at the top.
+struct MeanVarianceImage {
+  int width = 0;
+  int height = 0;
+  std::vector<float> mean;
+  std::vector<float> variance;
+};
+
 class Film {
  public:
   Film(int width, int height);

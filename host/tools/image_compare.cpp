@@ -5,8 +5,9 @@
 #include <cstdarg>
 #include <cstdio>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 namespace clpt {
 namespace {
@@ -164,55 +165,13 @@ void append_block_lines(std::string& out, const CompareResult& r) {
   }
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    if (ch == '"' || ch == '\\') {
-      out += '\\';
-      out += ch;
-    } else if (static_cast<unsigned char>(ch) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", unsigned(static_cast<unsigned char>(ch)));
-      out += escaped;
-    } else {
-      out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 // JSON has no infinity or NaN: those become null.
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
-const char* json_bool(bool b) { return b ? "true" : "false"; }
+nlohmann::json json_triple(const double v[3]) { return {json_number(v[0]), json_number(v[1]), json_number(v[2])}; }
 
-std::string json_triple(const double v[3]) {
-  return "[" + json_number(v[0]) + ", " + json_number(v[1]) + ", " + json_number(v[2]) + "]";
-}
-
-std::string json_file(const ComparedFile& f) {
-  return "{\"path\": " + json_string(f.path) + ", \"spp\": " + (f.spp ? std::to_string(*f.spp) : "null") + "}";
-}
-
-std::string json_block_scales(const CompareResult& r) {
-  std::ostringstream out;
-  out << "[";
-  for (size_t i = 0; i < r.scales.size(); ++i) {
-    const BlockScaleResult& s = r.scales[i];
-    const WorstBlock& w = s.worst;
-    out << (i ? ",\n    " : "\n    ") << "{\"size\": " << s.block_size << ", \"count\": " << s.block_count
-        << ", \"rejected\": " << s.rejected_blocks << ", \"z_critical\": " << json_number(s.z_critical)
-        << ", \"worst\": {\"x\": " << w.x << ", \"y\": " << w.y << ", \"width\": " << w.width
-        << ", \"height\": " << w.height << ", \"channel\": \"" << kChannelNames[w.channel]
-        << "\", \"z\": " << json_number(w.z) << "}, \"pass\": " << json_bool(s.pass) << "}";
-  }
-  out << (r.scales.empty() ? "]" : "\n  ]");
-  return out.str();
+nlohmann::json json_file(const ComparedFile& f) {
+  return {{"path", f.path}, {"spp", f.spp ? nlohmann::json(*f.spp) : nlohmann::json(nullptr)}};
 }
 
 }  // namespace
@@ -306,25 +265,39 @@ std::string compare_report_json(const CompareResult& r, const ComparedFile& a, c
   const CompareOptions& o = r.options;
   const ImageMeanResult& m = r.image_mean;
   const double difference[3] = {m.mean_a[0] - m.mean_b[0], m.mean_a[1] - m.mean_b[1], m.mean_a[2] - m.mean_b[2]};
-  std::ostringstream out;
-  out << "{\n  \"mode\": \"" << (o.same_seed ? "same-seed" : "statistical") << "\",\n"
-      << "  \"a\": " << json_file(a) << ",\n  \"b\": " << json_file(b) << ",\n"
-      << "  \"width\": " << r.width << ",\n  \"height\": " << r.height << ",\n"
-      << "  \"pixels\": {\"count\": " << r.pixel_count << ", \"accepted\": " << r.accepted_pixels
-      << ", \"accept_fraction\": " << json_number(r.accept_fraction) << ", \"min_accept\": "
-      << json_number(o.min_accept) << ", \"pixel_alpha\": " << json_number(o.pixel_alpha)
-      << ", \"z_critical\": " << json_number(r.pixel_z_critical) << ", \"pass\": " << json_bool(r.pixels_pass)
-      << "},\n  \"block_scales\": " << json_block_scales(r) << ",\n"
-      << "  \"image_mean\": {\"a\": " << json_triple(m.mean_a) << ", \"b\": " << json_triple(m.mean_b)
-      << ", \"difference\": " << json_triple(difference) << ", \"z\": " << json_triple(m.z)
-      << ", \"alpha\": " << json_number(o.alpha) << ", \"z_critical\": " << json_number(m.z_critical)
-      << ", \"pass\": " << json_bool(m.pass) << "},\n"
-      << "  \"statistical_pass\": " << json_bool(r.statistical_pass) << ",\n"
-      << "  \"same_seed\": {\"decides\": " << json_bool(o.same_seed) << ", \"tolerance\": "
-      << json_number(o.tolerance) << ", \"equal_fraction\": " << json_number(r.equal_fraction)
-      << ", \"min_equal\": " << json_number(o.min_equal) << ", \"pass\": " << json_bool(r.same_seed_pass)
-      << "},\n  \"pass\": " << json_bool(r.pass) << "\n}\n";
-  return out.str();
+  nlohmann::json scales = nlohmann::json::array();
+  for (const BlockScaleResult& s : r.scales) {
+    const WorstBlock& w = s.worst;
+    scales.push_back({{"size", s.block_size},
+                      {"count", s.block_count},
+                      {"rejected", s.rejected_blocks},
+                      {"z_critical", json_number(s.z_critical)},
+                      {"worst", {{"x", w.x}, {"y", w.y}, {"width", w.width}, {"height", w.height},
+                                 {"channel", kChannelNames[w.channel]}, {"z", json_number(w.z)}}},
+                      {"pass", s.pass}});
+  }
+  const nlohmann::json report = {
+      {"mode", o.same_seed ? "same-seed" : "statistical"},
+      {"a", json_file(a)},
+      {"b", json_file(b)},
+      {"width", r.width},
+      {"height", r.height},
+      {"pixels", {{"count", r.pixel_count}, {"accepted", r.accepted_pixels},
+                  {"accept_fraction", json_number(r.accept_fraction)}, {"min_accept", json_number(o.min_accept)},
+                  {"pixel_alpha", json_number(o.pixel_alpha)}, {"z_critical", json_number(r.pixel_z_critical)},
+                  {"pass", r.pixels_pass}}},
+      {"block_scales", scales},
+      {"image_mean", {{"a", json_triple(m.mean_a)}, {"b", json_triple(m.mean_b)},
+                      {"difference", json_triple(difference)}, {"z", json_triple(m.z)},
+                      {"alpha", json_number(o.alpha)}, {"z_critical", json_number(m.z_critical)},
+                      {"pass", m.pass}}},
+      {"statistical_pass", r.statistical_pass},
+      {"same_seed", {{"decides", o.same_seed}, {"tolerance", json_number(o.tolerance)},
+                     {"equal_fraction", json_number(r.equal_fraction)}, {"min_equal", json_number(o.min_equal)},
+                     {"pass", r.same_seed_pass}}},
+      {"pass", r.pass},
+  };
+  return report.dump(2) + "\n";
 }
 
 }  // namespace clpt

@@ -21,15 +21,9 @@
 #include <string>
 #include <vector>
 
-namespace clpt {
+#include "render/film.h"  // MeanVarianceImage
 
-// One render: mean and variance of the mean, RGB interleaved (3 floats a pixel), row 0 at the top.
-struct MeanVarianceImage {
-  int width = 0;
-  int height = 0;
-  std::vector<float> mean;
-  std::vector<float> variance;
-};
+namespace clpt {
 
 struct CompareOptions {
   // Family-wise false-rejection rate of one pixel's test (Sidak-split over its 3 channels). It
