@@ -10,6 +10,7 @@
 #include "render/film.h"
 #include "render/limits.h"
 #include "render/pass_loop.h"
+#include "render/work_queue.h"
 #include "util/error.h"
 
 namespace clpt {

@@ -213,12 +213,6 @@ int run(const RenderOptions& o) {
   Scene scene = load_scene_file(o.scene_path);
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
-  if (o.explain) {
-    KernelFeatures features = o.generic ? generic_features(precision) : features_for_scene(scene, precision);
-    if (o.intersection) features.intersection = parse_intersection(*o.intersection);
-    features.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);
-    std::printf("%s", explain_kernel_options(features).c_str());
-  }
 
   RenderRequest request;
   request.device = o.device;
@@ -235,6 +229,8 @@ int run(const RenderOptions& o) {
   request.use_kernel_cache = !o.no_cache;
   request.show_progress = !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
   request.launch_target_s = o.launch_ms / 1000;
+  // After device selection, before any device work: the plan as every device will run it.
+  if (o.explain) request.on_plan = [](const RenderPlan& plan) { std::printf("%s", explain_plan(plan).c_str()); };
   RenderReport report;
   request.scene = scene;
   // Scenes beyond what the extreme-scene tests proved for this preset (README "Numerical extremes").
@@ -289,7 +285,9 @@ std::function<int()> add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"cap", "sphere"}));
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing but errors");
   cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
-  cmd->add_flag("--explain", o->explain, "Print how the kernel was specialised for the scene");
+  cmd->add_flag("--explain", o->explain,
+                "Print the render plan before rendering: per device the form, loop, kernel specialisation, "
+                "work-group and path-pool sizes, launch sizing and memory");
   cmd->add_flag("--generic", o->generic, "Compile every feature in, not only what the scene uses");
   cmd->add_flag("--no-cache", o->no_cache, "Compile the kernel from source; neither read nor write "
                                            "clpt's kernel binary cache (`clpt cache dir`)");

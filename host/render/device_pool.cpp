@@ -9,16 +9,19 @@
 #include "cl/cl_context.h"
 #include "cl/cl_error.h"
 #include "render/limits.h"
+#include "render/megakernel_renderer.h"
 #include "render/wavefront_renderer.h"
 #include "util/clock.h"
 
 namespace clpt {
 namespace {
 
-// When several devices share a pass, a range of the wavefront (which needs no watchdog bound)
-// aims at a quarter of the pass loop's 0.5 s pass: enough ranges per pass to balance, few enough
-// that each fills the device's paths in flight.
-constexpr double kSharedRangeTargetS = 0.125;
+// The renderer of an execution form, with its program built as the device's plan says.
+std::unique_ptr<Renderer> make_renderer(const DevicePlan& plan, DeviceContext& ctx, const DeviceScene& scene) {
+  if (plan.form == ExecutionForm::Wavefront)
+    return std::make_unique<WavefrontRenderer>(ctx, scene, plan.features, plan.paths_in_flight, plan.local_size);
+  return std::make_unique<MegakernelRenderer>(ctx, scene, plan.features, plan.local_size);
+}
 
 // Pixel-samples traced and the wall time they took.
 struct Throughput {
@@ -52,18 +55,20 @@ struct DevicePool::PassState {
   int in_flight = 0;  // ranges taken and not yet added or given back
 };
 
-DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const PoolSettings& settings)
-    : faults_(settings.faults) {
-  for (size_t i = 0; i < devices.size(); ++i) {
+DevicePool::DevicePool(const RenderPlan& plan, const DeviceScene& scene, FaultPlan faults)
+    : faults_(std::move(faults)) {
+  for (const DevicePlan& d : plan.devices) {
     members_.push_back(std::make_unique<Member>());
-    members_.back()->position = i;
-    members_.back()->info = devices[i];
-    members_.back()->share.device = devices[i].label();
+    members_.back()->position = d.position;
+    members_.back()->info = d.device;
+    members_.back()->sizing = d.sizing;
+    members_.back()->share.device = d.device.label();
+    members_.back()->share.form = d.form;
   }
   std::vector<std::thread> threads;
   for (size_t i = 1; i < members_.size(); ++i)
-    threads.emplace_back([this, &settings, i] { build(*members_[i], settings); });
-  build(*members_[0], settings);
+    threads.emplace_back([&, i] { build(*members_[i], plan.devices[i], plan.use_kernel_cache, scene); });
+  build(*members_[0], plan.devices[0], plan.use_kernel_cache, scene);
   for (std::thread& t : threads) t.join();
   if (fatal_) std::rethrow_exception(fatal_);
   if (working_count() == 0) throw_every_device_failed();
@@ -76,30 +81,18 @@ DevicePool::DevicePool(const std::vector<DeviceInfo>& devices, const PoolSetting
 
 DevicePool::~DevicePool() = default;
 
-void DevicePool::build(Member& m, const PoolSettings& settings) {
+void DevicePool::build(Member& m, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene) {
   try {
-    m.share.form = settings.form.value_or(default_form_for(m.info));
     if (faults_.fails_build(m.position))
       FaultPlan::throw_injected(CL_BUILD_PROGRAM_FAILURE, "clBuildProgram", m.info.label());
-    check_precision_supported(settings.features.precision, m.info);
+    check_precision_supported(plan.features.precision, m.info);
     m.ctx = std::make_unique<DeviceContext>(m.info);
-    if (settings.use_kernel_cache) m.ctx->use_default_kernel_cache();
+    if (use_kernel_cache) m.ctx->use_default_kernel_cache();
     m.share.device = m.ctx->where();
-    check_device_memory(estimate_device_memory(m.share.form, settings.image_pixels,
-                                               settings.scene->spheres.size(), settings.paths_in_flight, m.info),
-                        m.info);
-    m.renderer = make_renderer(m.share.form, *m.ctx, *settings.scene, settings.features,
-                               settings.paths_in_flight, settings.local_size);
+    check_device_memory(plan.memory, m.info);
+    m.renderer = make_renderer(plan, *m.ctx, scene);
     m.share.build_seconds = m.renderer->build_seconds();
-    // Launch sizing: the megakernel's launches are watchdog-sized (--launch-ms); a pass shared by
-    // several devices is cut into throughput-sized ranges whatever the form; otherwise the
-    // wavefront takes a whole pass in one launch (its launches are bounded by paths in flight).
-    const bool megakernel_split = m.share.form == ExecutionForm::Megakernel && settings.launch_target_s > 0;
-    m.sizing.target_s = megakernel_split ? settings.launch_target_s : 0;
-    if (!megakernel_split && members_.size() > 1) m.sizing.target_s = kSharedRangeTargetS;
-    m.sizing.first_pixels = std::clamp(settings.image_pixels / 64, 1u, 4096u);
-    m.sizing.max_pixels =
-        uint32_t(std::clamp<uint64_t>(launch_buffer_budget(m.info) / sizeof(GpuPixelPass), 1, UINT32_MAX));
+    m.share.built = true;
   } catch (const Error& e) {
     std::lock_guard<std::mutex> lock(mutex_);
     m.failed = true;
@@ -235,35 +228,33 @@ std::vector<std::string> DevicePool::take_notices() {
   return std::exchange(notices_, {});
 }
 
-void DevicePool::fill_report(RenderReport& report) const {
+std::vector<DeviceShare> DevicePool::shares() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<DeviceShare> out;
+  for (const auto& m : members_) out.push_back(m->share);
+  return out;
+}
+
+std::vector<StageTime> DevicePool::stage_times() const {
   std::map<std::string, StageTime> stages;
-  report.device.clear();
-  report.launches = 0;
-  report.devices.clear();
-  bool first = true;
   for (const auto& m : members_) {
-    report.devices.push_back(m->share);
-    report.launches += m->share.launches;
     if (!m->renderer) continue;  // failed its set-up
-    if (!report.device.empty()) report.device += " + ";
-    report.device += m->share.device;
-    report.build_seconds = std::max(first ? 0.0 : report.build_seconds, m->share.build_seconds);
     for (const StageTime& t : m->renderer->stage_times()) {
       StageTime& sum = stages[t.label];
       sum.label = t.label;
       sum.seconds += t.seconds;
       sum.launches += t.launches;
     }
-    if (!first) continue;
-    first = false;  // the first device built gives the form, options, cache and paths in flight
-    report.form = m->share.form;
-    report.build_options = m->renderer->build_options();
-    report.kernel_cache = m->ctx->kernel_cache();
-    if (auto* wavefront = dynamic_cast<WavefrontRenderer*>(m->renderer.get()))
-      report.paths_in_flight = wavefront->paths_in_flight();
   }
-  report.stage_times.clear();
-  for (auto& entry : stages) report.stage_times.push_back(entry.second);
+  std::vector<StageTime> out;
+  for (auto& entry : stages) out.push_back(entry.second);
+  return out;
+}
+
+std::shared_ptr<KernelCache> DevicePool::kernel_cache() const {
+  for (const auto& m : members_)
+    if (m->renderer) return m->ctx->kernel_cache();
+  return nullptr;
 }
 
 }  // namespace clpt

@@ -19,33 +19,36 @@
 #include "kernels/kernel_options.h"
 #include "render/fault_injection.h"
 #include "render/film.h"
-#include "render/pass_loop.h"
-#include "render/render_session.h"
+#include "render/render_plan.h"
 #include "render/renderer.h"
 #include "render/work_queue.h"
 #include "scene/device_scene.h"
 
 namespace clpt {
 
-// What every device's renderer is built from (RenderRequest's device-independent part).
-struct PoolSettings {
-  const DeviceScene* scene = nullptr;  // must outlive the pool's constructor
-  KernelFeatures features;
-  std::optional<ExecutionForm> form;   // unset: each device's default_form_for
-  uint32_t paths_in_flight = 0;        // wavefront; 0: from the device
-  size_t local_size = 0;
-  bool use_kernel_cache = true;
-  double launch_target_s = 0.075;      // megakernel launches (watchdogs); <= 0: none
-  uint32_t image_pixels = 0;
-  FaultPlan faults;
+class KernelCache;
+
+// One device's part in a render (RenderReport::devices).
+struct DeviceShare {
+  std::string device;             // label, "device 'NAME' (PLATFORM)"
+  ExecutionForm form = ExecutionForm::Megakernel;
+  bool built = false;             // its context and renderer were set up (a failed set-up: false)
+  double build_seconds = 0;
+  uint64_t paths = 0;             // samples it traced in this run
+  uint64_t segments = 0;          // ray segments of those samples
+  uint64_t launches = 0;          // pixel ranges it traced
+  double busy_seconds = 0;        // wall time inside its launches (results read back included)
+  std::string failure;            // empty: it worked to the end; else the error that retired it
 };
 
 class DevicePool {
  public:
-  // Builds a context and renderer on every device, in parallel (one thread per device). A device
-  // whose set-up throws clpt::Error is retired with a notice. Throws when none is left: the
+  // Builds a context and renderer on every device of the plan, in parallel (one thread per
+  // device), as the plan says. A device whose set-up throws clpt::Error (no fp64 for double, too
+  // little memory, a failed build) is retired with a notice. Throws when none is left: the
   // device's own error when there was one device, else an Error naming every device's failure.
-  DevicePool(const std::vector<DeviceInfo>& devices, const PoolSettings& settings);
+  // `scene` must outlive the constructor.
+  DevicePool(const RenderPlan& plan, const DeviceScene& scene, FaultPlan faults = FaultPlan::from_environment());
   ~DevicePool();
   DevicePool(const DevicePool&) = delete;
   DevicePool& operator=(const DevicePool&) = delete;
@@ -63,14 +66,18 @@ class DevicePool {
   // ...; its work goes to the other devices").
   std::vector<std::string> take_notices();
 
-  // Device label(s), form, build, launches, stage times and RenderReport::devices.
-  void fill_report(RenderReport& report) const;
+  // Every device's part so far, in plan order (failed ones too).
+  std::vector<DeviceShare> shares() const;
+  // Device time per stage, summed over the devices (wavefront; empty for the megakernel).
+  std::vector<StageTime> stage_times() const;
+  // clpt's kernel binary cache as used by the first device that built (null when off or none).
+  std::shared_ptr<KernelCache> kernel_cache() const;
 
  private:
   struct Member;
   struct PassState;
 
-  void build(Member& member, const PoolSettings& settings);
+  void build(Member& member, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene);
   void work(Member& member, const GpuRenderParams& params, Film& film, PassState& pass);
   // Pixels of member's next range; called under mutex_.
   uint32_t range_pixels(Member& member, uint32_t remaining, uint32_t samples) const;

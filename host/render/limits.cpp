@@ -5,8 +5,6 @@
 
 #include "cl/cl_device.h"
 #include "kernels/path_state.h"
-#include "render/render_session.h"
-#include "render/wavefront_renderer.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -46,7 +44,7 @@ void add_buffer(MemoryEstimate& e, uint64_t bytes, const char* label) {
 }  // namespace
 
 uint64_t launch_buffer_budget(const DeviceInfo& device) {
-  const uint64_t cap = WavefrontRenderer::kMaxJobBytes;
+  const uint64_t cap = kMaxLaunchBufferBytes;
   return device.max_alloc_bytes > 0 ? std::min<uint64_t>(cap, device.max_alloc_bytes / 2) : cap;
 }
 
@@ -91,8 +89,7 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
   // pixels (pass_loop.cpp).
   uint64_t launch_pixels = pixels;
   if (form == ExecutionForm::Wavefront) {
-    const uint64_t paths = paths_in_flight ? paths_in_flight : WavefrontRenderer::default_paths_in_flight(device);
-    e.total_bytes += paths * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
+    e.total_bytes += uint64_t(paths_in_flight) * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
   } else {
     launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
   }

@@ -20,8 +20,14 @@ constexpr uint64_t kMaxImagePixels = 1ull << 26;   // width * height
 constexpr uint64_t kMaxSpp = 1ull << 31;           // sample indices are 32-bit on the device
 constexpr size_t kMaxSpheres = 4096;
 constexpr int kMaxBouncesLimit = 1000;
+constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
+// kernels/film.cl sums a pass pairwise in CLPT_PAIRWISE_LEVELS = 13 levels: up to 8191 samples.
+static_assert(kMaxSamplesPerPass < (1u << 13), "film.cl's pairwise sum has 13 levels");
 
-// Bytes one per-launch buffer may take on `device`: min(256 MiB, max allocation / 2). Bounds the
+// The most bytes of one per-launch buffer on any device (launch_buffer_budget).
+constexpr uint64_t kMaxLaunchBufferBytes = uint64_t(256) << 20;
+
+// Bytes one per-launch buffer may take on `device`: min(kMaxLaunchBufferBytes, max allocation / 2). Bounds the
 // wavefront's job results (WavefrontRenderer::max_samples_per_pass) and the megakernel's pass
 // statistics per launch (so at most budget / 32 pixels per launch).
 uint64_t launch_buffer_budget(const DeviceInfo& device);
@@ -49,7 +55,7 @@ struct MemoryEstimate {
 };
 
 // The buffers MegakernelRenderer / WavefrontRenderer allocate for `pixels` pixels and
-// `spheres` spheres: the sphere buffer (96 B each) and pass statistics (32 B per pixel of a
+// `spheres` spheres (paths_in_flight: the wavefront's path slots as planned, render_plan.h): the sphere buffer (96 B each) and pass statistics (32 B per pixel of a
 // launch) for both; the wavefront adds paths_in_flight x 252 B of path state (two sets of 17
 // fields, 2 scratch fields, at the double preset's sizes, the largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).

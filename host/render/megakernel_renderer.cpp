@@ -10,15 +10,13 @@ namespace clpt {
 MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene,
                                        const KernelFeatures& features, size_t local_size)
     : ctx_(ctx) {
-  KernelFeatures resolved = features;
-  resolved.lockstep_group = lockstep_group_for(features.megakernel_loop, ctx.device(), features.precision, local_size);
-  lockstep_group_ = resolved.lockstep_group;
+  lockstep_group_ = features.lockstep_group;
   if (lockstep_group_ > ctx.device().max_work_group_size)
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(lockstep_group_) + ": " + ctx.device().label() +
                                      " takes work-groups of at most " +
                                      std::to_string(ctx.device().max_work_group_size) + " work-items");
-  local_size_ = lockstep_group_ ? lockstep_group_ : local_size;
-  program_ = build(ctx, "megakernel.cl", resolved);
+  local_size_ = lockstep_group_ ? lockstep_group_ : local_size;  // the plan sets both alike
+  program_ = build(ctx, "megakernel.cl", features);
   kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 

@@ -1,7 +1,7 @@
 // The megakernel execution form (kernels/megakernel.cl): one work-item per path, looping over
 // its segments (alone, or in lockstep with its work-group on CPUs), then film_sum_jobs sums each
 // pixel's samples. Passes are split into launches over
-// pixel ranges (pass_loop.h) so that no launch trips a display watchdog.
+// pixel ranges (device_pool.h, work_queue.h) so that no launch trips a display watchdog.
 #pragma once
 
 #include <vector>
@@ -15,9 +15,10 @@ namespace clpt {
 
 class MegakernelRenderer : public Renderer {
  public:
-  // Builds the program for `features` and uploads the scene. The loop (per path or lockstep) is
-  // decided for this device by lockstep_group_for (kernel_options.h). local_size: the lockstep
-  // work-group size (0: kDefaultLockstepGroup), or the per-path loop's (0: the driver chooses).
+  // Builds the program for `features` and uploads the scene. The loop is the plan's
+  // (render_plan.h): lockstep in work-groups of features.lockstep_group when that is non-zero,
+  // per path otherwise. local_size: the per-path loop's work-group size (0: the driver chooses);
+  // the lockstep loop always launches work-groups of features.lockstep_group.
   MegakernelRenderer(DeviceContext& ctx, const DeviceScene& scene, const KernelFeatures& features,
                      size_t local_size = 0);
 

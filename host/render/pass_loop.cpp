@@ -27,24 +27,18 @@ bool interrupted(const PassLoopOptions& options) {
 
 }  // namespace
 
-uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
-                            double pixel_samples_per_s, uint32_t previous) {
-  if (remaining == 0) return 0;
-  const double max_pixels = std::max(1u, sizing.max_pixels);
-  double n = max_pixels;
-  if (sizing.target_s > 0) {
-    n = pixel_samples_per_s > 0 ? pixel_samples_per_s * sizing.target_s / std::max(1u, samples)
-                                : double(sizing.first_pixels);
-    if (previous > 0) n = std::min(n, double(previous) * kMaxLaunchGrowth);
-    n = std::clamp(n, 1.0, max_pixels);
-  }
-  const uint32_t pixels = static_cast<uint32_t>(n);
-  if (pixels >= remaining || (remaining - pixels < pixels / 4 && remaining <= max_pixels)) return remaining;
-  return pixels;
+uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
+                           double target_s, uint32_t granularity) {
+  double want = samples_per_pixel_per_s > 0 ? samples_per_pixel_per_s * target_s : granularity;
+  want = std::clamp(want, double(granularity), double(kMaxSamplesPerPass));
+  uint64_t n = uint64_t(want) / granularity * granularity;
+  if (target > 0) n = std::min<uint64_t>(n, target - done);
+  return static_cast<uint32_t>(std::max<uint64_t>(n, 1));
 }
 
-void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
-                const PassLoopOptions& options, RenderReport& report) {
+PassLoopResult run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
+                          const PassLoopOptions& options) {
+  PassLoopResult result;
   const uint64_t stop_spp = options.target_spp ? options.target_spp : kMaxSpp;
   const uint32_t g = options.granularity;
   Progress progress(options.show_progress);
@@ -56,11 +50,11 @@ void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
   while (film.samples_per_pixel() < stop_spp) {
     print_notices(pool, progress);
     if (interrupted(options)) {
-      report.interrupted = true;
+      result.interrupted = true;
       break;
     }
     const double elapsed = seconds_since(t0);
-    if (options.time_limit_s > 0 && report.passes > 0 && elapsed >= options.time_limit_s) break;
+    if (options.time_limit_s > 0 && result.passes > 0 && elapsed >= options.time_limit_s) break;
     double pass_s = options.pass_target_s;
     if (options.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, options.time_limit_s - elapsed));
     pass.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
@@ -70,9 +64,9 @@ void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
     const Clock::time_point pass_start = Clock::now();
     pool.run_pass(pass, film);
     rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
-    ++report.passes;
-    if (report.passes == 1 && options.after_first_pass) options.after_first_pass();
-    progress.update(report.passes, film.samples_per_pixel(), options.target_spp,
+    ++result.passes;
+    if (result.passes == 1 && options.after_first_pass) options.after_first_pass();
+    progress.update(result.passes, film.samples_per_pixel(), options.target_spp,
                     double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0)),
                     seconds_since(t0), options.time_limit_s);
     if (options.checkpoint && seconds_since(last_checkpoint) >= options.checkpoint_every_s) {
@@ -82,6 +76,7 @@ void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
   }
   print_notices(pool, progress);
   progress.finish();
+  return result;
 }
 
 }  // namespace clpt

@@ -10,29 +10,8 @@
 #include <functional>
 
 #include "render/film.h"
-#include "render/render_session.h"
-#include "render/renderer.h"
 
 namespace clpt {
-
-// How the megakernel's launches are sized.
-struct LaunchSizing {
-  double target_s = 0.075;           // wall time per launch; <= 0: one launch per pass
-  uint32_t first_pixels = 4096;      // pixels of the first launch, before any measurement
-  uint32_t max_pixels = UINT32_MAX;  // memory bound: the pass buffer holds 32 B per pixel
-};
-
-// A launch may cover at most this many times the pixels of the one before: small launches
-// under-use the device and so under-estimate its throughput; growth by steps stays safe.
-constexpr uint32_t kMaxLaunchGrowth = 4;
-
-// Pixels for the next launch of a pass. Pure. remaining: pixels of the pass not yet launched;
-// samples: samples per pixel of the pass; pixel_samples_per_s: measured throughput of the last
-// launch (0: none yet, use first_pixels); previous: pixels of the last launch (0: none). The
-// result is in [1, remaining] (0 when remaining is 0); a tail of under a quarter of a launch is
-// folded into it, so passes do not end in a sliver.
-uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
-                            double pixel_samples_per_s, uint32_t previous);
 
 struct PassLoopOptions {
   uint64_t target_spp = 0;       // 0: until the time limit (at most kMaxSpp)
@@ -49,14 +28,24 @@ struct PassLoopOptions {
   bool show_progress = false;
 };
 
+// What the loop did.
+struct PassLoopResult {
+  int passes = 0;
+  bool interrupted = false;  // stopped early: the interrupt was set before the target was reached
+};
+
 class DevicePool;
 
 // Adds passes to `film` (which may already hold samples: a resumed render continues at
 // sample index film.samples_per_pixel()), each traced by the devices of `pool` (one or several).
-// `params` describes the whole image. Fills passes and interrupted (true only when the loop
-// stopped early for an interrupt) in `report`; prints the pool's notices of failed devices on
-// stderr. Blocking; throws what the pool throws.
-void run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
-                const PassLoopOptions& options, RenderReport& report);
+// `params` describes the whole image. Prints the pool's notices of failed devices on stderr.
+// Blocking; throws what the pool throws.
+PassLoopResult run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
+                          const PassLoopOptions& options);
+
+// Samples per pass: the first pass is one sampler period, later passes aim at target_s seconds
+// from the measured rate, capped by what is left and by kMaxSamplesPerPass (limits.h).
+uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
+                           double target_s, uint32_t granularity);
 
 }  // namespace clpt

@@ -7,6 +7,10 @@
 
 namespace clpt {
 
+const char* execution_form_name(ExecutionForm form) {
+  return form == ExecutionForm::Wavefront ? "wavefront" : "megakernel";
+}
+
 ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
                               const KernelFeatures& features) {
   build_options_ = kernel_build_options(features);

@@ -22,7 +22,7 @@ class WavefrontRenderer : public Renderer {
 
   std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
   // One result slot (16 bytes) per sample of the pass: bounded to launch_buffer_budget()
-  // = min(kMaxJobBytes, the device's max allocation / 2), but at least one sample.
+  // = min(kMaxLaunchBufferBytes, the device's max allocation / 2), but at least one sample.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
   size_t work_group_size() const override { return local_size_; }
   std::vector<StageTime> stage_times() const override;
@@ -34,7 +34,6 @@ class WavefrontRenderer : public Renderer {
   // launches beat keeping the state in cache (measured on PoCL, 2 cores, 640x480 x 16 spp:
   // 1.74 M paths/s at 8192 per compute unit, 1.95 M at 32768, no better at 65536; README "Speed").
   static uint32_t default_paths_in_flight(const DeviceInfo& device);
-  static constexpr size_t kMaxJobBytes = size_t(256) << 20;
   static constexpr size_t kDefaultLocalSize = 64;
   // wf_shade ranks a work-group's survivors in local memory sized for this many (wavefront.cl).
   static constexpr size_t kMaxLocalSize = 1024;

@@ -37,4 +37,20 @@ uint32_t balanced_range_pixels(uint32_t launch, uint32_t remaining, double share
   return static_cast<uint32_t>(std::clamp(n, 1.0, double(remaining)));
 }
 
+uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
+                            double pixel_samples_per_s, uint32_t previous) {
+  if (remaining == 0) return 0;
+  const double max_pixels = std::max(1u, sizing.max_pixels);
+  double n = max_pixels;
+  if (sizing.target_s > 0) {
+    n = pixel_samples_per_s > 0 ? pixel_samples_per_s * sizing.target_s / std::max(1u, samples)
+                                : double(sizing.first_pixels);
+    if (previous > 0) n = std::min(n, double(previous) * kMaxLaunchGrowth);
+    n = std::clamp(n, 1.0, max_pixels);
+  }
+  const uint32_t pixels = static_cast<uint32_t>(n);
+  if (pixels >= remaining || (remaining - pixels < pixels / 4 && remaining <= max_pixels)) return remaining;
+  return pixels;
+}
+
 }  // namespace clpt

@@ -1,5 +1,7 @@
 // The pixels of one pass, handed out as ranges to the devices of a render (device_pool.h), and
-// how large a range one device takes. Not thread-safe: the pool holds its lock around it.
+// how large a range one device takes: its own launch sizing (watchdog target, growth and memory
+// bounds) and its share of the devices' combined speed. The queue is not thread-safe: the pool
+// holds its lock around it.
 #pragma once
 
 #include <cstdint>
@@ -41,5 +43,24 @@ class PixelRangeQueue {
 // it at about the same time instead of one waiting for another's long last range. The result is
 // in [1, remaining] (0 when remaining is 0).
 uint32_t balanced_range_pixels(uint32_t launch, uint32_t remaining, double share, uint32_t min_pixels);
+
+// How one device's launches are sized (decided per device in render_plan.cpp).
+struct LaunchSizing {
+  double target_s = 0.075;           // wall time per launch; <= 0: one launch per pass
+  uint32_t first_pixels = 4096;      // pixels of the first launch, before any measurement
+  uint32_t max_pixels = UINT32_MAX;  // memory bound: the pass buffer holds 32 B per pixel
+};
+
+// A launch may cover at most this many times the pixels of the one before: small launches
+// under-use the device and so under-estimate its throughput; growth by steps stays safe.
+constexpr uint32_t kMaxLaunchGrowth = 4;
+
+// Pixels for the next launch of a pass. Pure. remaining: pixels of the pass not yet launched;
+// samples: samples per pixel of the pass; pixel_samples_per_s: measured throughput of the last
+// launch (0: none yet, use first_pixels); previous: pixels of the last launch (0: none). The
+// result is in [1, remaining] (0 when remaining is 0); a tail of under a quarter of a launch is
+// folded into it, so passes do not end in a sliver.
+uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
+                            double pixel_samples_per_s, uint32_t previous);
 
 }  // namespace clpt

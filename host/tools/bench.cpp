@@ -13,8 +13,8 @@
 #include "cl/cl_device.h"
 #include "kernels/kernel_options.h"
 #include "render/film.h"
-#include "render/render_session.h"
-#include "render/wavefront_renderer.h"
+#include "render/device_pool.h"
+#include "render/render_plan.h"
 #include "scene/device_scene.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
@@ -32,21 +32,19 @@ Spread spread_of(std::vector<double> v) {
   return s;
 }
 
-std::vector<const DeviceInfo*> resolve_devices(const std::vector<std::string>& specs,
-                                               const std::vector<DeviceInfo>& all) {
-  std::vector<const DeviceInfo*> out;
-  for (const std::string& spec : specs) {
-    if (spec == "all") {
-      for (const DeviceInfo& d : all) out.push_back(&d);
-    } else {
-      out.push_back(&select_device(all, spec));
-    }
-  }
+// --devices entries resolve as render's --device does ("all": every real device).
+std::vector<DeviceInfo> resolve_devices(const std::vector<std::string>& specs, const std::vector<DeviceInfo>& all) {
+  std::vector<DeviceInfo> out;
+  for (const std::string& spec : specs)
+    for (const DeviceInfo& d : select_devices(all, spec)) out.push_back(d);
   return out;
 }
 
-// One matrix cell: builds (cold, then cached), warms up, times `repeat` runs.
-BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx, ExecutionForm form,
+// One matrix cell, run as a render runs it: one plan (render_plan.h), its device pool and the
+// same passes (launches sized as in a render). Builds cold (options no driver cache has seen),
+// then twice more, the second timed (the driver's cache, clpt's own off), warms up, times
+// `repeat` passes of c.spp samples per pixel.
+BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& device, ExecutionForm form,
                     bool generic, Precision precision, size_t local_size, MegakernelLoop loop) {
   BenchRow row;
   row.scene = scene.file;
@@ -54,23 +52,32 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   row.kernel = generic ? "generic" : "specialised";
   row.precision = precision_name(precision);
   row.estimator = scene.settings.estimator;
-  row.device = ctx.device().name;
+  row.device = device.name;
+  RenderRequest request;
+  request.scene = scene;
+  request.form = form;
+  request.megakernel_loop = loop;
+  request.precision = precision;
+  request.generic_kernel = generic;
+  request.local_size = local_size;
+  request.paths_in_flight = c.paths_in_flight;
+  request.use_kernel_cache = false;
+  const RenderPlan plan = plan_render(request, {device});
+  const DevicePlan& planned = plan.devices.front();
   const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
-  KernelFeatures features = generic ? generic_features(precision) : features_for_scene(scene, precision);
-  features.megakernel_loop = loop;
 
-  // Cold: options no driver cache has seen. Cached: the same build twice, the second timed.
-  features.build_nonce = std::random_device{}() | 1u;
-  row.build_cold_s = make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size)->build_seconds();
-  features.build_nonce = 0;
-  make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
-  const auto renderer = make_renderer(form, ctx, ds, features, c.paths_in_flight, local_size);
-  row.build_cached_s = renderer->build_seconds();
-  row.local_size = renderer->work_group_size();
-  row.loop = renderer->loop_name();
+  RenderPlan cold = plan;
+  cold.devices.front().features.build_nonce = std::random_device{}() | 1u;
+  row.build_cold_s = DevicePool(cold, ds, FaultPlan()).shares().front().build_seconds;
+  { DevicePool fill_driver_cache(plan, ds, FaultPlan()); }
+  DevicePool pool(plan, ds, FaultPlan());
+  row.build_cached_s = pool.shares().front().build_seconds;
+  row.local_size = planned.local_size;
+  if (form == ExecutionForm::Megakernel) row.loop = planned.features.lockstep_group ? "lockstep" : "path";
+  row.paths_in_flight = planned.paths_in_flight;
 
   GpuRenderParams params = make_params(scene, ds);
-  params.samples_per_pass = std::min(c.spp, renderer->max_samples_per_pass(params.pixel_count));
+  params.samples_per_pass = std::min(c.spp, pool.max_samples_per_pass(params.pixel_count));
   std::vector<double> paths_per_s, segments_per_s;
   std::map<std::string, std::vector<double>> stage_runs;
   std::map<std::string, double> stage_before;
@@ -78,9 +85,9 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
     Film film(c.width, c.height);
     params.sample_begin = static_cast<cl_uint>(run) * params.samples_per_pass;
     const auto t0 = Clock::now();
-    film.add_pass(renderer->render_pass(params), 0, params.samples_per_pass);
+    pool.run_pass(params, film);
     const double s = seconds_since(t0);
-    for (const StageTime& t : renderer->stage_times()) {
+    for (const StageTime& t : pool.stage_times()) {
       if (run >= c.warmup) stage_runs[t.label].push_back(t.seconds - stage_before[t.label]);
       stage_before[t.label] = t.seconds;
     }
@@ -91,8 +98,6 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, DeviceContext& ctx
   row.paths_per_s = spread_of(paths_per_s);
   row.segments_per_s = spread_of(segments_per_s);
   for (const auto& [label, v] : stage_runs) row.stage_seconds.emplace_back(label, spread_of(v).median);
-  if (form == ExecutionForm::Wavefront)
-    row.paths_in_flight = c.paths_in_flight ? c.paths_in_flight : WavefrontRenderer::default_paths_in_flight(ctx.device());
   return row;
 }
 
@@ -112,8 +117,8 @@ std::string BenchRow::key() const {
 std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
   const std::vector<DeviceInfo> all = list_devices();
   std::vector<BenchRow> rows;
-  for (const DeviceInfo* device : resolve_devices(c.devices, all)) {
-    DeviceContext ctx(*device);
+  for (const DeviceInfo& d : resolve_devices(c.devices, all)) {
+    const DeviceInfo* device = &d;
     for (const std::string& file : c.scenes)
       for (const std::string& estimator : c.estimators) {
         Scene scene = load_scene_file(file);
@@ -138,7 +143,7 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
                                  execution_form_name(form), form == ExecutionForm::Megakernel ? " loop " : "",
                                  form == ExecutionForm::Megakernel ? megakernel_loop_name(loop) : "",
                                  generic ? "generic" : "specialised", local_size, device->name.c_str());
-                  rows.push_back(bench_cell(c, scene, ctx, form, generic, precision, local_size, loop));
+                  rows.push_back(bench_cell(c, scene, *device, form, generic, precision, local_size, loop));
                 }
             }
         }

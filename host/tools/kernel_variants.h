@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "kernels/kernel_options.h"
-#include "render/render_session.h"
+#include "render/render_request.h"
 #include "scene/scene.h"
 
 namespace clpt {

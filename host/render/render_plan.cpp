@@ -1,0 +1,162 @@
+#include "render/render_plan.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "render/megakernel_renderer.h"
+#include "render/wavefront_renderer.h"
+#include "util/error.h"
+
+namespace clpt {
+namespace {
+
+// When several devices share a pass, a range of the wavefront (which needs no watchdog bound)
+// aims at a quarter of the pass loop's 0.5 s pass: enough ranges per pass to balance, few enough
+// that each fills the device's paths in flight.
+constexpr double kSharedRangeTargetS = 0.125;
+
+// Launch sizing: the megakernel's launches are watchdog-sized (--launch-ms); a pass shared by
+// several devices is cut into throughput-sized ranges whatever the form; otherwise the wavefront
+// takes a whole pass in one launch (its launches are bounded by paths in flight).
+LaunchSizing sizing_for(const DevicePlan& d, const RenderRequest& request, size_t device_count,
+                        uint32_t image_pixels) {
+  LaunchSizing sizing;
+  const bool megakernel_split = d.form == ExecutionForm::Megakernel && request.launch_target_s > 0;
+  sizing.target_s = megakernel_split ? request.launch_target_s : 0;
+  if (!megakernel_split && device_count > 1) sizing.target_s = kSharedRangeTargetS;
+  sizing.first_pixels = std::clamp(image_pixels / 64, 1u, 4096u);
+  sizing.max_pixels =
+      uint32_t(std::clamp<uint64_t>(launch_buffer_budget(d.device) / sizeof(GpuPixelPass), 1, UINT32_MAX));
+  return sizing;
+}
+
+}  // namespace
+
+// The megakernel everywhere. On CPUs (PoCL) it runs its lockstep loop, which PoCL vectorises
+// across work-items with no path state in memory: measured 4x the wavefront's paths/s with
+// `clpt bench` (docs/performance.md); the wavefront's stages move every path's state through
+// memory at every bounce. GPUs run the per-path loop, which keeps paths in registers; no GPU has
+// been measured yet.
+ExecutionForm default_form_for(const DeviceInfo& device) {
+  (void)device;
+  return ExecutionForm::Megakernel;
+}
+
+void check_precision_supported(Precision precision, const DeviceInfo& device) {
+  if (precision == Precision::Double && !device.fp64)
+    throw Error(ExitCode::DeviceError, "--precision double: " + device.label() +
+                                      " does not report cl_khr_fp64 (no double precision); use "
+                                      "--precision robust, or another device (`clpt devices`)");
+}
+
+GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
+  const RenderSettings& s = scene.settings;
+  GpuRenderParams p{};
+  p.camera = ds.camera;
+  p.width = static_cast<clpt_u32>(s.width);
+  p.height = static_cast<clpt_u32>(s.height);
+  p.sphere_count = static_cast<clpt_u32>(ds.spheres.size());
+  p.max_bounces = static_cast<clpt_u32>(s.max_bounces);
+  p.seed_lo = static_cast<clpt_u32>(s.seed & 0xffffffffu);
+  p.seed_hi = static_cast<clpt_u32>(s.seed >> 32);
+  p.sampler = s.sampler == Sampler::Grid ? CLPT_SAMPLER_GRID : CLPT_SAMPLER_JITTER;
+  p.ray_epsilon = ds.ray_epsilon;
+  p.pixel_begin = 0;
+  p.pixel_count = p.width * p.height;
+  p.estimator = parse_estimator(s.estimator).value_or(Estimator::Book) == Estimator::Nee ? CLPT_ESTIMATOR_NEE
+                                                                                        : CLPT_ESTIMATOR_BOOK;
+  p.rr_from = s.rr_from >= 0 ? static_cast<clpt_u32>(s.rr_from) : CLPT_RR_NEVER;
+  p.light_count = static_cast<clpt_u32>(ds.lights.size());
+  return p;
+}
+
+RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInfo>& devices) {
+  const Scene& scene = request.scene;
+  const RenderSettings& s = scene.settings;
+  RenderPlan plan;
+  plan.width = s.width;
+  plan.height = s.height;
+  plan.image_pixels = uint32_t(s.width) * uint32_t(s.height);
+  plan.target_spp = request.spp_given ? uint64_t(s.spp) : 0;
+  plan.time_limit_s = request.time_limit_s;
+  plan.sampler_granularity = s.sampler == Sampler::Grid ? 16u : 1u;
+  plan.precision = request.precision;
+  plan.use_kernel_cache = request.use_kernel_cache;
+
+  // What the scene needs (or everything, --generic); the device decides only the loop below.
+  KernelFeatures features =
+      request.generic_kernel ? generic_features(request.precision) : features_for_scene(scene, request.precision);
+  features.intersection = request.intersection;
+  features.megakernel_loop = request.megakernel_loop;
+
+  for (size_t i = 0; i < devices.size(); ++i) {
+    DevicePlan d;
+    d.position = i;
+    d.device = devices[i];
+    d.form = request.form.value_or(default_form_for(d.device));
+    d.form_reason = request.form ? "--form" : "the device's default";
+    d.features = features;
+    if (d.form == ExecutionForm::Megakernel) {
+      d.entry_file = "megakernel.cl";
+      d.features.lockstep_group =
+          lockstep_group_for(request.megakernel_loop, d.device, request.precision, request.local_size);
+      d.local_size = d.features.lockstep_group ? d.features.lockstep_group : request.local_size;
+    } else {
+      d.entry_file = "wavefront.cl";
+      d.local_size = request.local_size ? request.local_size : WavefrontRenderer::kDefaultLocalSize;
+      d.paths_in_flight =
+          request.paths_in_flight ? request.paths_in_flight : WavefrontRenderer::default_paths_in_flight(d.device);
+    }
+    d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
+    d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device);
+    plan.devices.push_back(std::move(d));
+  }
+  return plan;
+}
+
+std::string explain_plan(const RenderPlan& plan) {
+  std::ostringstream o;
+  o << "render plan: " << plan.width << "x" << plan.height << ", "
+    << (plan.target_spp ? std::to_string(plan.target_spp) + " spp" : std::string("no sample limit"))
+    << (plan.time_limit_s > 0 ? ", at most " + std::to_string(plan.time_limit_s) + " s" : std::string())
+    << ", passes in multiples of " << plan.sampler_granularity << " sample(s) per pixel"
+    << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "") << ", kernel cache "
+    << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";
+  for (const DevicePlan& d : plan.devices) {
+    o << "device " << d.position << ": " << d.device.label() << "\n";
+    o << "  execution form: " << execution_form_name(d.form) << " (" << d.form_reason << "), kernel file "
+      << d.entry_file << "\n";
+    if (d.form == ExecutionForm::Megakernel)
+      o << "  megakernel loop: "
+        << (d.features.lockstep_group
+                ? "lockstep, work-groups of " + std::to_string(d.features.lockstep_group)
+                : std::string("per path"))
+        << " (--megakernel-loop " << megakernel_loop_name(d.features.megakernel_loop)
+        << (d.features.megakernel_loop == MegakernelLoop::Auto
+                ? std::string(": lockstep on CPUs with the robust preset, per path otherwise; this is a ") +
+                      (d.device.is_cpu ? "CPU" : "GPU")
+                : std::string())
+        << ")\n";
+    else
+      o << "  path pool: " << d.paths_in_flight << " paths in flight\n";
+    o << "  work-group size: "
+      << (d.local_size ? std::to_string(d.local_size)
+                       : std::string("the driver's choice for whole-image launches, ") +
+                             std::to_string(MegakernelRenderer::kPartialLaunchLocalSize) + " for partial ones")
+      << "\n";
+    o << "  launches: "
+      << (d.sizing.target_s > 0 ? "sized from the measured speed to take about " +
+                                      std::to_string(int(d.sizing.target_s * 1000 + 0.5)) + " ms, the first " +
+                                      std::to_string(d.sizing.first_pixels) + " pixels"
+                                : std::string("one per pass"))
+      << ", at most " << d.sizing.max_pixels << " pixels (device memory)\n";
+    o << "  device memory: " << format_bytes(d.memory.total_bytes) << " (largest buffer '" << d.memory.largest_label
+      << "', " << format_bytes(d.memory.largest_bytes) << ")\n";
+    std::istringstream kernel(explain_kernel_options(d.features));
+    for (std::string line; std::getline(kernel, line);)
+      if (line.find("megakernel loop:") == std::string::npos) o << "  " << line << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace clpt

@@ -1,0 +1,54 @@
+// What a user asks of one render: the scene (with the command line's overrides merged in), the
+// devices, the kernel and execution choices, the stopping rule and the host-side callbacks.
+// Data only: render_plan.h turns it into every decision a render makes, render_session.h runs it.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "kernels/kernel_options.h"
+#include "render/film.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace clpt {
+
+struct RenderPlan;
+
+struct RenderRequest {
+  Scene scene;               // settings already merged with command-line overrides
+  std::string device = "";   // --device value ("" = best; "all" or a comma list: several devices)
+  double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
+  bool spp_given = true;     // false when only --time bounds the render
+  bool show_progress = false;
+  Precision precision = Precision::Robust;  // --precision
+  std::optional<Intersection> intersection;  // --intersection; unset: the preset's
+  bool generic_kernel = false;  // compile every feature, not only what the scene needs
+  size_t local_size = 0;        // work-group size; 0 lets the driver choose
+  std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
+  MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // --megakernel-loop
+  uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
+  bool use_kernel_cache = true;       // clpt's kernel binary cache (--no-cache turns it off)
+  // Megakernel launches are sized to take about this long (watchdogs); <= 0: one per pass.
+  double launch_target_s = 0.075;
+  // Polled between passes; when it becomes true the running pass finishes and the render stops.
+  const std::atomic<bool>* interrupt = nullptr;
+  // A checkpoint to continue from (render/checkpoint.h): sampling resumes at its spp.
+  std::optional<Film> resume;
+  // Called once, after the first pass (none when empty): host work to overlap with the rest of
+  // the render, such as loading the image writer. Not before: OpenCL drivers load their kernels
+  // (PoCL: a shared object per kernel) at the first launch, and a dlopen on another thread would
+  // hold the dynamic loader's lock against them.
+  std::function<void()> after_first_pass;
+  // Called between passes at most every checkpoint_every_s seconds (none when empty).
+  std::function<void(const Film&)> checkpoint;
+  double checkpoint_every_s = 60;
+  // Called once with the resolved plan, after device selection and before any device work (none
+  // when empty): `clpt render --explain` prints it.
+  std::function<void(const RenderPlan&)> on_plan;
+};
+
+}  // namespace clpt
