@@ -48,7 +48,7 @@ PoolSettings pool_settings(const RenderRequest& request, const DeviceScene& devi
   s.use_kernel_cache = request.use_kernel_cache;
   s.launch_target_s = request.launch_target_s;
   s.image_pixels = uint32_t(scene.settings.width) * uint32_t(scene.settings.height);
-  s.faults = FaultPlan::from_environment();
+  s.faults = request.faults ? *request.faults : FaultPlan::from_environment();
   return s;
 }
 

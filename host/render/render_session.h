@@ -9,6 +9,7 @@
 #include <string>
 
 #include "kernels/kernel_options.h"
+#include "render/fault_injection.h"
 #include "render/film.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -45,6 +46,10 @@ struct RenderRequest {
   // Called between passes at most every checkpoint_every_s seconds (none when empty).
   std::function<void(const Film&)> checkpoint;
   double checkpoint_every_s = 60;
+  // Injected faults (render/fault_injection.h); unset: CLPT_INJECT_FAULT from the environment.
+  // `clpt verify` sets it: none for its reference renders, the tested device's own faults for
+  // the device's.
+  std::optional<FaultPlan> faults;
 };
 
 // One device's part in a render (RenderReport::devices).
