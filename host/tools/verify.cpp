@@ -221,6 +221,18 @@ Rendered render(const Scene& scene, ExecutionForm form, Precision precision, con
   return {from_film(film), double(report.paths) / std::max(1e-9, report.render_seconds)};
 }
 
+// A rate for the table: "6.54 M", "12.3 k" or "196" (a simulator runs a few hundred paths/s).
+std::string si_rate(double per_s) {
+  std::string out;
+  if (per_s >= 1e6)
+    appendf(out, "%.2f M", per_s * 1e-6);
+  else if (per_s >= 1e3)
+    appendf(out, "%.1f k", per_s * 1e-3);
+  else
+    appendf(out, "%.0f", per_s);
+  return out;
+}
+
 // The first line of an error message (a build failure carries the whole build log after it).
 std::string first_line(const std::string& message) { return message.substr(0, message.find('\n')); }
 
@@ -370,14 +382,15 @@ std::string verify_header(const VerifyReport& rep) {
   for (int b : o.block_sizes) appendf(out, " %d", b);
   appendf(out, " and the image mean at family-wise alpha %g\n", o.alpha);
   for (const std::string& note : rep.notes) out += note + "\n";
-  appendf(out, "%-4s %-10s %-9s %-10s %-9s %-7s %-25s %8s %9s %10s  %s\n", "dev", "driver", "scene", "form",
-          "precision", "verdict", "worst |z| (test, channel)", "accept", "same-seed", "M paths/s", "device");
+  appendf(out, "%-4s %-9s %-10s %-9s %-7s %-26s %8s %9s %9s  %s\n", "dev", "scene", "form", "precision",
+          "verdict", "worst |z| (test, channel)", "accept", "same-seed", "paths/s", "device, driver");
   return out;
 }
 
 std::string verify_row_line(const VerifyRow& row) {
-  std::string out, worst = "-", accept = "-", same = "n/a";
+  std::string out, worst = "-", accept = "-", same = "-", rate = "-";
   if (row.error.empty()) {
+    same = "n/a";  // builtin mode: an independent reference has no same-seed fraction
     worst.clear();
     appendf(worst, "%.2f (%s, %c)", std::abs(row.worst_z), row.worst_test.c_str(), kChannels[row.worst_channel]);
     accept.clear();
@@ -386,15 +399,11 @@ std::string verify_row_line(const VerifyRow& row) {
       same.clear();
       appendf(same, "%.2f%%", 100 * *row.same_seed_fraction);
     }
+    rate = si_rate(row.paths_per_s);
   }
-  const std::string rate = row.error.empty() ? [&] {
-    std::string s;
-    appendf(s, "%.2f", row.paths_per_s * 1e-6);
-    return s;
-  }() : std::string("-");
-  appendf(out, "%-4d %-10s %-9s %-10s %-9s %-7s %-25s %8s %9s %10s  %s%s\n", row.device_index,
-          row.driver.c_str(), row.scene.c_str(), row.form.c_str(), row.precision.c_str(), row.pass ? "PASS" : "FAIL",
-          worst.c_str(), accept.c_str(), same.c_str(), rate.c_str(), row.device.c_str(),
+  appendf(out, "%-4d %-9s %-10s %-9s %-7s %-26s %8s %9s %9s  %s, driver %s%s\n", row.device_index,
+          row.scene.c_str(), row.form.c_str(), row.precision.c_str(), row.pass ? "PASS" : "FAIL", worst.c_str(),
+          accept.c_str(), same.c_str(), rate.c_str(), row.device.c_str(), row.driver.c_str(),
           row.is_reference_device ? " (the reference device)" : "");
   return out;
 }
