@@ -3,6 +3,7 @@
 // Exit 0 when every row passes, 1 when any row fails (or none could run), 2 on bad options or a
 // missing file, 4 when --reference device finds no PoCL device.
 #include <cstdio>
+#include <string>
 #include <filesystem>
 #include <memory>
 
@@ -66,6 +67,36 @@ int run(VerifyCommandOptions& o) {
   return static_cast<int>(all_passed ? ExitCode::Ok : ExitCode::Failure);
 }
 
+// The --help text after the options; the alphas, sizes and spp come from the code that uses them.
+std::string help_footer() {
+  const CompareOptions o;
+  std::string blocks;
+  for (size_t i = 0; i < o.block_sizes.size(); ++i)
+    blocks += (i ? i + 1 == o.block_sizes.size() ? " and " : ", " : "") + std::to_string(o.block_sizes[i]) + "x" +
+              std::to_string(o.block_sizes[i]);
+  char text[2048];
+  std::snprintf(
+      text, sizeof text,
+      "Rows: device x scene x form x precision (double only where the device has cl_khr_fp64), the "
+      "book's grid sampler and estimator. The reference (--reference device, the default when PoCL is "
+      "present) is the first PoCL CPU device, rendering the same scene, form, precision, size (default "
+      "%dx%d), spp (%lld) and seed, once per scene x form x precision; when that device is also under "
+      "test its rows are kept: they compare it with itself and prove the harness. --reference builtin "
+      "(the default without PoCL) compares with gemspt's converged renders (--reference-dir) at "
+      "%dx%d, %lld spp; no same-seed fraction there (n/a).\n"
+      "Verdict (PASS/FAIL): compare_renders at its fixed defaults: a pixel accepts at alpha %g over "
+      "its 3 channels and >= %.2f%% of pixels must; %s block means and the image mean at family-wise "
+      "alpha %g each. Worst |z|: the largest |z| among every block scale's worst block and the image "
+      "mean's 3 channels; accept: the pixel test's accept fraction; same-seed: pixels equal within %g "
+      "relative (information only: a correct device may round differently).\n"
+      "Exit: 0 every row passed; 1 a row failed (its FAIL line names scene, test and channel) or no "
+      "row could run; 2 bad option or missing scene or reference file; 4 --reference device without "
+      "a PoCL device.",
+      kVerifyWidth, kVerifyHeight, (long long)kVerifySpp, kBuiltinWidth, kBuiltinHeight, (long long)kBuiltinSpp,
+      o.pixel_alpha, 100 * o.min_accept, blocks.c_str(), o.alpha, o.tolerance);
+  return text;
+}
+
 }  // namespace
 
 std::function<int()> add_verify_command(CLI::App& app) {
@@ -73,26 +104,12 @@ std::function<int()> add_verify_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "verify", "Check that a device renders correctly: the book's scenes in every form and precision, "
                 "tested against a PoCL reference (or gemspt's images)");
-  cmd->footer(
-      "Rows: device x scene x form x precision (double only where the device has cl_khr_fp64). The "
-      "reference (--reference device, the default when PoCL is present) is the first PoCL CPU device, "
-      "rendering the same scene, form, precision, size, spp and seed, once per scene x form x "
-      "precision; when that device is also under test its rows are kept (they compare it with itself "
-      "and prove the harness). --reference builtin (the default without PoCL) compares with gemspt's "
-      "160x120 renders in tests/reference at 160x120, 2048 spp; no same-seed fraction there (n/a).\n"
-      "Verdict: compare_renders at its fixed defaults: a pixel accepts at alpha 0.001 over its 3 "
-      "channels and >= 99.75% must; 16x16, 32x32 and 64x64 block means and the image mean at "
-      "family-wise alpha 0.01 each. Worst |z|: the largest |z| among every scale's worst block and "
-      "the image mean's channels; accept: the pixel test's accept fraction; same-seed: pixels equal "
-      "within 1e-4 relative (information only: a correct device may round differently).\n"
-      "Exit: 0 every row passed; 1 a row failed (a FAIL line names scene, test and channel) or no "
-      "row could run; 2 bad option or missing scene/reference file; 4 --reference device without "
-      "PoCL.");
+  cmd->footer(help_footer());
   VerifyConfig& c = o->config;
   cmd->add_option("--device", c.device, "Devices to test: all, or as render --device (index, cpu, gpu, "
                                         "cpu:N, gpu:N, name substring, comma list)")
       ->capture_default_str();
-  cmd->add_option("--scenes", c.scenes, "Subset of the book's scenes: diffuse,specular,glass")
+  cmd->add_option("--scenes", c.scenes, "Subset of the book's scenes (default: diffuse,specular,glass)")
       ->delimiter(',')
       ->check(CLI::IsMember(verify_scene_names()));
   cmd->add_option("--forms", o->forms, "Execution forms (default: megakernel,wavefront)")
@@ -107,9 +124,9 @@ std::function<int()> add_verify_command(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "device", "builtin"}));
   cmd->add_option("--reference-dir", c.reference_dir,
                   "Directory of gemspt_{diffuse,specular,glass}_160x120.exr (default: the tree's tests/reference)");
-  cmd->add_option("--width", c.width, "Image width (default 64; builtin: 160 only)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", c.height, "Image height (default 48; builtin: 120 only)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--spp", o->spp, "Samples per pixel, a multiple of 16 (default 1280; builtin: 2048)")
+  cmd->add_option("--width", c.width, "Image width (default 64; --reference builtin: 160 only)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", c.height, "Image height (default 48; --reference builtin: 120 only)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--spp", o->spp, "Samples per pixel, a multiple of 16 (default 1280; --reference builtin: 2048)")
       ->check(CLI::Range(int64_t(16), int64_t(1) << 31));
   cmd->add_option("--seed", c.seed, "Random seed of every render (device and reference)")->capture_default_str();
   cmd->add_option("--json", o->json_path, "Also write the rows to this .json file (atomically)");
