@@ -75,6 +75,22 @@ TEST(VerifyRow, ALocalShiftIsNamedByItsBlockScaleAndChannel) {
   EXPECT_NE(verify_row_line(row).find(" n/a "), std::string::npos) << verify_row_line(row);
 }
 
+TEST(VerifyRow, APixelOnlyFailureStillNamesAChannel) {
+  // 32 pairs of pixels in B, one 50% bright and one 40% dark in the same 16x16 block: 64 pixels
+  // reject (0.39%, over the 0.25% allowed; |z| >= 0.2 / sqrt(2e-4) = 14) while the blocks and the
+  // image mean move little (the image mean most: z = 32 * 0.05 / 16384 / sqrt(2e-4 / 16384) = 0.88).
+  MeanVarianceImage device = flat();
+  for (size_t j = 0; j < 32; ++j) {
+    const size_t row = (j / 8) * 16 + 5, column = (j % 8) * 16 + 3;
+    device.mean[(row * kSize + column) * 3 + 2] *= 1.5f;
+    device.mean[(row * kSize + column + 6) * 3 + 2] *= 0.6f;
+  }
+  const VerifyRow row = row_from(device, flat(), true);
+  EXPECT_FALSE(row.pass);
+  EXPECT_EQ(row.failure.rfind("pixels: 99.609% accept (need >= 99.75%); worst: ", 0), 0u) << row.failure;
+  EXPECT_NE(row.failure.find("worst: image mean channel B, z = +0.88"), std::string::npos) << row.failure;
+}
+
 TEST(VerifyReport, FooterAndJsonCarryEveryRow) {
   VerifyReport report;
   report.width = kSize;

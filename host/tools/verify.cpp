@@ -292,6 +292,10 @@ void fill_row_statistics(const CompareResult& r, bool report_same_seed, VerifyRo
   if (!r.pixels_pass)
     appendf(row.failure, "%spixels: %.3f%% accept (need >= %.2f%%)", named ? "; " : "",
             100 * r.accept_fraction, 100 * r.options.min_accept);
+  // Only the pixel test failed: still name a channel, the worst block's or image mean's.
+  if (!named && worst)
+    appendf(row.failure, "; worst: %s channel %c, z = %+.2f (passes below |z| %.2f)", worst->test.c_str(),
+            kChannels[worst->channel], worst->z, worst->critical);
 }
 
 VerifyReport run_verify(const VerifyConfig& config, const std::function<void(const VerifyReport&)>& on_start,
