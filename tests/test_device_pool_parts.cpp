@@ -2,6 +2,7 @@
 // lists), the pass's pixel queue, the balanced range size, and CLPT_INJECT_FAULT parsing.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -184,6 +185,48 @@ TEST(FaultPlan, RejectsMalformedEntriesNamingTheVariable) {
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), ExitCode::Usage);
       EXPECT_NE(std::string(e.what()).find("CLPT_INJECT_FAULT='" + bad + "'"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(FaultPlan, ParsesPerturbFactorsPerDeviceAndChannel) {
+  const FaultPlan none = FaultPlan::parse("build:0");
+  EXPECT_EQ(none.channel_factors(0), (std::array<double, 3>{1, 1, 1}));
+  const FaultPlan plan = FaultPlan::parse("perturb:0:G:1.02,perturb:1:R:0.5,perturb:1:R:3,launch:1:2");
+  EXPECT_EQ(plan.channel_factors(0), (std::array<double, 3>{1, 1.02, 1}));
+  EXPECT_EQ(plan.channel_factors(1), (std::array<double, 3>{1.5, 1, 1}));  // factors multiply
+  EXPECT_EQ(plan.channel_factors(2), (std::array<double, 3>{1, 1, 1}));
+  EXPECT_FALSE(plan.fails_build(0));  // a perturbation is not a failure
+  EXPECT_FALSE(plan.fails_launch(0, 1));
+  EXPECT_EQ(FaultPlan::parse("perturb:3:B:2e-1").channel_factors(3), (std::array<double, 3>{1, 1, 0.2}));
+}
+
+TEST(FaultPlan, ForDeviceRenumbersThatDevicesFaultsAsDeviceZero) {
+  const FaultPlan plan = FaultPlan::parse("perturb:1:G:1.02,build:0,launch:1:4");
+  const FaultPlan one = plan.for_device(1);
+  EXPECT_EQ(one.channel_factors(0), (std::array<double, 3>{1, 1.02, 1}));
+  EXPECT_TRUE(one.fails_launch(0, 4));
+  EXPECT_FALSE(one.fails_build(0));  // device 0's build fault stays with device 0
+  EXPECT_EQ(one.channel_factors(1), (std::array<double, 3>{1, 1, 1}));
+  const FaultPlan zero = plan.for_device(0);
+  EXPECT_TRUE(zero.fails_build(0));
+  EXPECT_EQ(zero.channel_factors(0), (std::array<double, 3>{1, 1, 1}));
+  EXPECT_TRUE(plan.for_device(2).empty());
+}
+
+TEST(FaultPlan, RejectsMalformedPerturbEntries) {
+  for (const std::string bad : {"perturb", "perturb:0", "perturb:0:G", "perturb:0:G:", "perturb:0:g:1.02",
+                                "perturb:0:A:1.02", "perturb:x:G:1.02", "perturb:-1:G:1", "perturb:0:G:0",
+                                "perturb:0:G:-1.02", "perturb:0:G:nan", "perturb:0:G:inf", "perturb:0:G:1.02x",
+                                "perturb:0:G: 1.02", "perturb:0:G:1e999", "perturb:0:G:1.02:1"}) {
+    try {
+      FaultPlan::parse(bad);
+      ADD_FAILURE() << "accepted '" << bad << "'";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::Usage);
+      EXPECT_NE(std::string(e.what()).find("CLPT_INJECT_FAULT='" + bad + "': entry '" + bad + "'"),
+                std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("perturb:DEVICE:R|G|B:FACTOR"), std::string::npos) << e.what();
     }
   }
 }

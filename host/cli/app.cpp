@@ -17,6 +17,7 @@ ClptApp::ClptApp() {
 #ifdef CLPT_WITH_OIIO
   commands.emplace_back("compare", add_compare_command(app));
   commands.emplace_back("tradeoff", add_tradeoff_command(app));
+  commands.emplace_back("verify", add_verify_command(app));
 #endif
 }
 

@@ -1,6 +1,7 @@
 #include "render/device_pool.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <map>
 #include <thread>
@@ -29,6 +30,18 @@ struct Throughput {
   double seconds = 0;
   double rate() const { return seconds > 0 ? pixel_samples / seconds : 0; }
 };
+
+// CLPT_INJECT_FAULT=perturb:D:C:F: every sample of the range as if F times brighter in channel C,
+// so the sum of a pixel's samples scales by F and the sum of their squares by F^2. Applied here,
+// where both execution forms' results enter the film, and nowhere else.
+void apply_perturbation(const std::array<double, 3>& factors, std::vector<GpuPixelPass>& result) {
+  if (factors[0] == 1 && factors[1] == 1 && factors[2] == 1) return;
+  for (GpuPixelPass& px : result)
+    for (int c = 0; c < 3; ++c) {
+      px.sum[c] = float(double(px.sum[c]) * factors[size_t(c)]);
+      px.sum_sq[c] = float(double(px.sum_sq[c]) * factors[size_t(c)] * factors[size_t(c)]);
+    }
+}
 
 }  // namespace
 
@@ -157,6 +170,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, Pass
         return;
       }
       const double seconds = std::max(1e-9, seconds_since(start));
+      apply_perturbation(faults_.channel_factors(m.position), result);
       uint64_t segments = 0;
       for (const GpuPixelPass& px : result) segments += px.segments;
       std::lock_guard<std::mutex> lock(mutex_);

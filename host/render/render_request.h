@@ -10,6 +10,7 @@
 #include <string>
 
 #include "kernels/kernel_options.h"
+#include "render/fault_injection.h"
 #include "render/film.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
@@ -49,6 +50,10 @@ struct RenderRequest {
   // Called once with the resolved plan, after device selection and before any device work (none
   // when empty): `clpt render --explain` prints it.
   std::function<void(const RenderPlan&)> on_plan;
+  // Injected faults (render/fault_injection.h); unset: CLPT_INJECT_FAULT from the environment.
+  // `clpt verify` sets it: none for its reference renders, the tested device's own faults for
+  // the device's.
+  std::optional<FaultPlan> faults;
 };
 
 }  // namespace clpt

@@ -58,7 +58,7 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   // 2. The scene as the kernels see it; on each device a context and a kernel built as planned,
   //    in parallel.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision);
-  DevicePool pool(plan, device_scene);
+  DevicePool pool(plan, device_scene, request.faults ? *request.faults : FaultPlan::from_environment());
   report.precision = request.precision;
 
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
