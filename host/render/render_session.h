@@ -29,6 +29,7 @@ struct RenderRequest {
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
   std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // --megakernel-loop
+  SceneLoops scene_loops = SceneLoops::Auto;               // --scene-loops
   uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
   bool use_kernel_cache = true;       // clpt's kernel binary cache (--no-cache turns it off)
   // Megakernel launches are sized to take about this long (watchdogs); <= 0: one per pass.
@@ -107,7 +108,9 @@ uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pi
                            double target_s, uint32_t granularity);
 
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
-// kernels/film.cl sums a pass pairwise in CLPT_PAIRWISE_LEVELS = 13 levels: up to 8191 samples.
-static_assert(kMaxSamplesPerPass < (1u << 13), "film.cl's pairwise sum has 13 levels");
+// kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose
+// error bound (about 45 ulps) holds up to 16^3 samples; a larger pass would still be summed, with
+// a longer sequential outermost level and a looser bound.
+static_assert(kMaxSamplesPerPass <= 16 * 16 * 16, "film.cl's blocked sum has three levels of 16");
 
 }  // namespace clpt
