@@ -44,6 +44,7 @@ struct RenderOptions {
   bool no_cache = false;
   std::string form = "auto";
   std::string megakernel_loop = "auto";
+  std::string scene_loops = "auto";
   uint32_t paths_in_flight = 0;
   size_t local_size = 0;
   double launch_ms = 75;          // megakernel launch target, milliseconds; 0: one per pass
@@ -217,6 +218,9 @@ int run(const RenderOptions& o) {
     KernelFeatures features = o.generic ? generic_features(precision) : features_for_scene(scene, precision);
     if (o.intersection) features.intersection = parse_intersection(*o.intersection);
     features.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);
+    features.scene_loops = *parse_scene_loops(o.scene_loops);
+    // The options as a CPU would build them when left to auto (as for the megakernel loop).
+    features.unroll_scene_loops = features.scene_loops != SceneLoops::Rolled;
     std::printf("%s", explain_kernel_options(features).c_str());
   }
 
@@ -230,6 +234,7 @@ int run(const RenderOptions& o) {
   if (o.form != "auto")
     request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
   request.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);  // CLI11 checked the word
+  request.scene_loops = *parse_scene_loops(o.scene_loops);
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
@@ -299,6 +304,11 @@ std::function<int()> add_render_command(CLI::App& app) {
                   "Megakernel: auto (lockstep on CPUs with --precision robust, else per path), path or lockstep")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "path", "lockstep"}));
+  cmd->add_option("--scene-loops", o->scene_loops,
+                  "Specialised kernels' sphere and light loops: auto (unrolled on CPUs, rolled on GPUs), "
+                  "unrolled or rolled")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "unrolled", "rolled"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
       ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
   cmd->add_option("--local-size", o->local_size,

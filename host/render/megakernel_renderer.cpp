@@ -13,6 +13,7 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
   KernelFeatures resolved = features;
   resolved.lockstep_group = lockstep_group_for(features.megakernel_loop, ctx.device(), features.precision, local_size);
   lockstep_group_ = resolved.lockstep_group;
+  resolved.unroll_scene_loops = scene_loops_unrolled_for(features.scene_loops, ctx.device());
   if (lockstep_group_ > ctx.device().max_work_group_size)
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(lockstep_group_) + ": " + ctx.device().label() +
                                      " takes work-groups of at most " +

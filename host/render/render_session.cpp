@@ -42,6 +42,7 @@ PoolSettings pool_settings(const RenderRequest& request, const DeviceScene& devi
                                       : features_for_scene(scene, request.precision);
   s.features.intersection = request.intersection;
   s.features.megakernel_loop = request.megakernel_loop;
+  s.features.scene_loops = request.scene_loops;
   s.form = request.form;
   s.paths_in_flight = request.paths_in_flight;
   s.local_size = request.local_size;

@@ -23,7 +23,9 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   if (local_size_ > kMaxLocalSize)
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(local_size_) + ": the wavefront's work-groups hold at most " +
                                      std::to_string(kMaxLocalSize) + " work-items");
-  program_ = build(ctx, "wavefront.cl", features);
+  KernelFeatures resolved = features;
+  resolved.unroll_scene_loops = scene_loops_unrolled_for(features.scene_loops, ctx.device());
+  program_ = build(ctx, "wavefront.cl", resolved);
   generate_ = Kernel(program_.get(), "wf_generate", ctx.where());
   intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where());
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());
