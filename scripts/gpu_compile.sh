@@ -225,7 +225,7 @@ if [[ -n $docs ]]; then
     echo "figures mean and what they cannot tell: [gpu-compilers.md](gpu-compilers.md)."
     echo
     echo "- date: $(date -u '+%Y-%m-%d %H:%M UTC')"
-    echo "- machine: $(nproc)-core ${cpu:-unknown CPU}${virt:+ ($virt VM)}, $(. /etc/os-release && echo "$PRETTY_NAME")"
+    echo "- machine: $(nproc)-core ${cpu:-unknown CPU}${virt:+ (virtualisation: $virt)}, $(. /etc/os-release && echo "$PRETTY_NAME")"
     echo "- compiler: $("$CLANG" --version | head -1); libclc $(dpkg-query -W -f='${Version}' libclc-14 2>/dev/null || echo '(version unknown)')"
     echo "- targets: amdgcn -mcpu=$AMD_CPU (libclc amdgcn--amdhsa.bc), nvptx64 $NV_CPU (libclc nvptx64--nvidiacl.bc), -O3"
     echo "- source: $(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)$(git -C "$here" diff --quiet HEAD -- kernels host 2>/dev/null || echo ' (with uncommitted changes)')"
