@@ -113,8 +113,8 @@ mapfile -t variants < <(cut -d' ' -f1 "$out/src/variants.txt")
 # it). nvptx_native.h supplies native_powr, which LLVM 14's NVPTX backend cannot build from
 # libclc (see there). A builtin neither resolves stops the backend ("Undefined external symbol").
 common=(-x cl -Xclang -finclude-default-header -O3 -S -Wall -Wextra -Werror)
-amd=(-target amdgcn-unknown-amdhsa -mcpu=$AMD_CPU -nogpulib -Xclang -mlink-builtin-bitcode -Xclang "$CLC_DIR/amdgcn--amdhsa.bc")
-nv=(-target nvptx64-unknown-nvidiacl -Xclang -target-cpu -Xclang $NV_CPU -include "$here/scripts/gpucc/nvptx_native.h"
+amd=(-target amdgcn-unknown-amdhsa "-mcpu=$AMD_CPU" -nogpulib -Xclang -mlink-builtin-bitcode -Xclang "$CLC_DIR/amdgcn--amdhsa.bc")
+nv=(-target nvptx64-unknown-nvidiacl -Xclang -target-cpu -Xclang "$NV_CPU" -include "$here/scripts/gpucc/nvptx_native.h"
     -Xclang -mlink-builtin-bitcode -Xclang "$CLC_DIR/nvptx64--nvidiacl.bc")
 
 # compile_one VARIANT TARGET: one compilation, its diagnostics in OUT/TARGET/VARIANT.log; a
