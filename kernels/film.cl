@@ -1,56 +1,56 @@
 /* film.cl: per-pixel statistics of one pass.
  *
  * The paths of a launch leave their results per job; film_sum_jobs then gives each pixel to one
- * work-item, which sums its samples pairwise in `real` (float, or double under the double preset;
- * a pass holds at most 4096 samples) and writes, not adds, its GpuPixelPass. The host adds passes in double. Samples with a NaN or Inf channel are
- * dropped here (bit test, survives fast maths) and show up as valid_samples < samples. */
+ * work-item, which sums its samples in blocks of 16 in `real` (float, or double under the double
+ * preset; a pass holds at most 4096 samples) and writes, not adds, its GpuPixelPass. The host adds
+ * passes in double. Samples with a NaN or Inf channel are dropped here (bit test, survives fast
+ * maths) and show up as valid_samples < samples. */
 #ifndef CLPT_FILM_CL
 #define CLPT_FILM_CL
 
 #include "types.h"
 #include "maths.cl"
 
-typedef struct PixelAccumulator {
+/* Sums of a set of samples of one pixel: radiance and squared radiance per channel, in `real`. */
+typedef struct RadianceSums {
   Vec3 sum;
   Vec3 sum_sq;
-  real valid_samples;
-  uint segments;
-} PixelAccumulator;
+} RadianceSums;
 
-CLPT_INLINE PixelAccumulator pixel_accumulator_new(void) {
-  PixelAccumulator acc;
+CLPT_INLINE RadianceSums radiance_sums_new(void) {
+  RadianceSums acc;
   acc.sum = v3_splat(0.0f);
   acc.sum_sq = v3_splat(0.0f);
-  acc.valid_samples = (real)0;
-  acc.segments = 0u;
   return acc;
 }
 
-CLPT_INLINE void pixel_accumulator_add(PixelAccumulator* acc, Vec3 radiance, uint segments) {
-  acc->segments += segments;
-  const bool valid = v3_all_finite(radiance);
-  const Vec3 value = v3_select(valid, radiance, v3_splat(0.0f));
+/* acc += value (one sample, already finite). */
+CLPT_INLINE void radiance_sums_add(RadianceSums* acc, Vec3 value) {
   acc->sum = v3_add(acc->sum, value);
   acc->sum_sq = v3_add(acc->sum_sq, v3_mul(value, value));
-  acc->valid_samples += valid ? (real)1 : (real)0;
 }
 
 /* acc += other (sums of disjoint sample sets). */
-CLPT_INLINE void pixel_accumulator_merge(PixelAccumulator* acc, const PixelAccumulator* other) {
+CLPT_INLINE void radiance_sums_merge(RadianceSums* acc, const RadianceSums* other) {
   acc->sum = v3_add(acc->sum, other->sum);
   acc->sum_sq = v3_add(acc->sum_sq, other->sum_sq);
-  acc->valid_samples += other->valid_samples;
-  acc->segments += other->segments;
 }
 
+/* A pass's statistics of one pixel: the sums, and the counts, which are integers and exact. */
+typedef struct PixelAccumulator {
+  RadianceSums sums;
+  uint valid_samples;
+  uint segments;
+} PixelAccumulator;
+
 CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumulator* acc) {
-  out->sum[0] = (float)acc->sum.x;
-  out->sum[1] = (float)acc->sum.y;
-  out->sum[2] = (float)acc->sum.z;
-  out->valid_samples = (float)acc->valid_samples;
-  out->sum_sq[0] = (float)acc->sum_sq.x;
-  out->sum_sq[1] = (float)acc->sum_sq.y;
-  out->sum_sq[2] = (float)acc->sum_sq.z;
+  out->sum[0] = (float)acc->sums.sum.x;
+  out->sum[1] = (float)acc->sums.sum.y;
+  out->sum[2] = (float)acc->sums.sum.z;
+  out->valid_samples = (float)acc->valid_samples; /* exact: a pass has far fewer than 2^24 samples */
+  out->sum_sq[0] = (float)acc->sums.sum_sq.x;
+  out->sum_sq[1] = (float)acc->sums.sum_sq.y;
+  out->sum_sq[2] = (float)acc->sums.sum_sq.z;
   out->segments = acc->segments;
 }
 
@@ -69,12 +69,36 @@ CLPT_INLINE void job_result_store(__global float* results, uint job, uint jobs, 
   results[3u * jobs + job] = as_float(segments);
 }
 
-/* Pairwise (cascade) summation: partial sums of 1, 2, 4, ... samples, merged like the carries of a
- * binary counter, so that each sample passes through about log2(n) additions instead of n. A pass
- * of 4096 equal samples of 0.7 summed one after another in float came out 4e-5 low, the same way
- * in every pass (so the double accumulation over passes kept the bias); summed pairwise it is
- * exact. 13 levels cover kMaxSamplesPerPass = 4096. */
-#define CLPT_PAIRWISE_LEVELS 13
+/* Blocked summation in three levels of CLPT_FILM_BLOCK = 16: the samples of a pass are summed
+ * sixteen at a time, sixteen such sums into a sum of 256, and those into the pass's total. Each
+ * sample passes through at most 3 x 15 additions instead of up to 4095 one after another, so the
+ * relative rounding error of a pass of 4096 is bounded by about 45 ulps instead of 4095: a pass
+ * of 4096 samples of 0.7, summed sequentially in float, came out 4e-5 low, the same way in every
+ * pass (so the double accumulation over passes kept the bias); blocked, 1.7e-7 low (pairwise
+ * summation, which needed a 13-level array, 0; the accuracy the films need is 1e-6, the 1e7-spp
+ * test in test_extremes_stat.cpp). 16^3 = 4096 = kMaxSamplesPerPass (render_session.h); a larger
+ * pass would only lengthen the outermost, sequential, sum.
+ * Three accumulators in registers, indexed by nothing: the pairwise sum's carry array, indexed by
+ * the trailing one bits of the sample number, lived in private memory (632 bytes of scratch per
+ * work-item on gfx906, a 624-byte local depot in PTX), slow memory on every GPU.
+ * Under -cl-fast-relaxed-math (fast preset) the compiler may reassociate: it may reorder the
+ * additions within one block, which leaves the bound unchanged (any order of 16 terms has the
+ * same one), but a block's partial sum is a value carried by its own loop and added once to its
+ * parent's: folding it into one flat running sum would be a change of the loop structure, which
+ * reassociation of an expression does not license in practice. A compensated (Kahan) sum relies
+ * on (t - s) - x being non-zero in float, which reassociation simplifies to exactly 0: it would
+ * silently become the sequential sum under the fast preset. */
+#define CLPT_FILM_BLOCK 16u
+
+/* Sample s of this launch's pixel `local_pixel` (its jobs: film.cl header), NaN/Inf dropped. */
+CLPT_INLINE void film_add_sample(PixelAccumulator* total, RadianceSums* block, __global const float* results,
+                                 uint jobs, uint j) {
+  const Vec3 radiance = v3(results[j], results[jobs + j], results[2u * jobs + j]);
+  const bool valid = v3_all_finite(radiance);
+  radiance_sums_add(block, v3_select(valid, radiance, v3_splat(0.0f)));
+  total->valid_samples += valid ? 1u : 0u;
+  total->segments += as_uint(results[3u * jobs + j]);
+}
 
 /* One work-item per pixel of the launch: its samples summed in sample order, so the sums do not
  * depend on which form traced them or in what order. */
@@ -82,21 +106,23 @@ __kernel void film_sum_jobs(const GpuRenderParams params, __global const float* 
                             __global GpuPixelPass* pass) {
   const uint local_pixel = (uint)get_global_id(0);
   if (local_pixel >= params.pixel_count) return;
-  PixelAccumulator level[CLPT_PAIRWISE_LEVELS];
   const uint jobs = job_count(&params);
-  for (uint s = 0; s < params.samples_per_pass; ++s) {
-    const uint j = s * params.pixel_count + local_pixel;
-    PixelAccumulator carry = pixel_accumulator_new();
-    pixel_accumulator_add(&carry, v3(results[j], results[jobs + j], results[2u * jobs + j]),
-                          as_uint(results[3u * jobs + j]));
-    /* Sample s completes the partial sums of the levels where s has trailing one bits. */
-    uint l = 0u;
-    for (; (s >> l) & 1u; ++l) pixel_accumulator_merge(&carry, &level[l]);
-    level[l] = carry;
+  const uint n = params.samples_per_pass;
+  PixelAccumulator total;
+  total.sums = radiance_sums_new();
+  total.valid_samples = 0u;
+  total.segments = 0u;
+  uint s = 0u;
+  while (s < n) {
+    RadianceSums of_256 = radiance_sums_new();
+    for (uint b = 0u; b < CLPT_FILM_BLOCK && s < n; ++b) {
+      RadianceSums of_16 = radiance_sums_new();
+      for (uint c = 0u; c < CLPT_FILM_BLOCK && s < n; ++c, ++s)
+        film_add_sample(&total, &of_16, results, jobs, s * params.pixel_count + local_pixel);
+      radiance_sums_merge(&of_256, &of_16);
+    }
+    radiance_sums_merge(&total.sums, &of_256);
   }
-  PixelAccumulator total = pixel_accumulator_new();
-  for (uint l = 0u; l < CLPT_PAIRWISE_LEVELS; ++l)
-    if ((params.samples_per_pass >> l) & 1u) pixel_accumulator_merge(&total, &level[l]);
   film_write_pass(&pass[local_pixel], &total);
 }
 

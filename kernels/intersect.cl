@@ -109,8 +109,14 @@ CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3
 #endif
 
 /* Closest hit over all spheres but `skip` (-1: none); a linear scan, the book's scenes have 8.
- * A scene-specialised build fixes CLPT_SPHERE_COUNT, so the loop unrolls into straight-line code
- * (which PoCL can vectorise across work-items); the generic build reads the count at run time. */
+ * A scene-specialised build fixes CLPT_SPHERE_COUNT. With CLPT_UNROLL_SCENE_LOOPS (the host's
+ * choice for CPUs, kernel_options.cpp) the loop unrolls into straight-line code, which PoCL can
+ * vectorise across work-items; without (GPUs) it stays a loop, whose one sphere at a time needs
+ * fewer live registers than eight intersections scheduled side by side. The generic build reads
+ * the count at run time. Either way the spheres are visited in index order: the same hit. */
+#ifndef CLPT_UNROLL_SCENE_LOOPS
+#define CLPT_UNROLL_SCENE_LOOPS 1
+#endif
 CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_count, Vec3 o, Vec3 d,
                                 real t_min, int skip) {
   Hit hit;
@@ -118,7 +124,11 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
   hit.sphere = -1;
 #ifdef CLPT_SPHERE_COUNT
   (void)sphere_count;
+#if CLPT_UNROLL_SCENE_LOOPS
 #pragma unroll
+#else
+#pragma unroll 1
+#endif
   for (uint i = 0; i < CLPT_SPHERE_COUNT; ++i) {
 #else
   for (uint i = 0; i < sphere_count; ++i) {

@@ -76,7 +76,11 @@ CLPT_INLINE real light_pdf_of_hit(__global const GpuLight* lights, uint light_co
   real pdf = (real)0;
 #ifdef CLPT_LIGHT_COUNT
   (void)light_count;
+#if CLPT_UNROLL_SCENE_LOOPS /* intersect.cl */
 #pragma unroll
+#else
+#pragma unroll 1
+#endif
   for (uint i = 0; i < CLPT_LIGHT_COUNT; ++i) {
     const uint count = CLPT_LIGHT_COUNT;
 #else

@@ -102,7 +102,9 @@ CLPT_INLINE Hit path_intersect(const PathState* path, __global const GpuSphere* 
 CLPT_INLINE Vec3 material_sample(__global const GpuSphere* sphere, Vec3 d, Vec3 normal, Uniform4 u,
                                  Vec3* weight) {
   const Vec3 rho = v3_load_global(sphere->reflectance);
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS /* read only where there is a choice (else an unused variable) */
   const uint material = sphere->material;
+#endif
   Vec3 next = bsdf_lambertian_sample(d, normal, rho, u, weight);
 #if CLPT_HAS_PHONG
   Vec3 phong_weight;
@@ -123,7 +125,9 @@ CLPT_INLINE Vec3 material_sample(__global const GpuSphere* sphere, Vec3 d, Vec3 
  * estimation). Glass is specular: 0 and 0. */
 CLPT_INLINE Vec3 material_eval(__global const GpuSphere* sphere, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
   const Vec3 rho = v3_load_global(sphere->reflectance);
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS /* read only where there is a choice (else an unused variable) */
   const uint material = sphere->material;
+#endif
   Vec3 f_cos = bsdf_lambertian_eval(d, normal, rho, wi, pdf);
 #if CLPT_HAS_PHONG
   real phong_pdf;

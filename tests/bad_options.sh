@@ -48,6 +48,7 @@ expect 2 "subcommand" -- frobnicate
 expect 2 "--precision" -- render "$scene" --precision quad -o out.exr
 expect 2 "--estimator" -- render "$scene" --estimator bdpt -o out.exr
 expect 2 "--megakernel-loop" -- render "$scene" --megakernel-loop unrolled -o out.exr
+expect 2 "--scene-loops" -- render "$scene" --scene-loops lockstep -o out.exr
 expect 2 "--rr-from" -- render "$scene" --rr-from -1 -o out.exr
 expect 2 "--intersection" -- render "$scene" --intersection exact -o out.exr
 expect 2 "--light-sampling" -- render "$scene" --light-sampling cone -o out.exr

@@ -212,7 +212,7 @@ std::vector<Extreme> all_extremes() {
   all.push_back(albedo_one_furnace(1, 0));
   all.push_back(albedo_one_furnace(1e6, 1e7));
   all.push_back(long_accumulation(0.75, 10'000'000));
-  // 0.7 is not dyadic: a sequential float sum of a pass came out 4.0e-5 low; film.cl sums pairwise.
+  // 0.7 is not dyadic: a sequential float sum of a pass came out 4.0e-5 low; film.cl sums in blocks of 16.
   all.push_back(long_accumulation(0.7, 10'000'000));
   return all;
 }

@@ -65,7 +65,7 @@ TEST(ExtremesRobust, AlbedoOneFurnaceIsExactlyTheEmission) { expect_passes(albed
 // 1e7 samples per pixel of exactly 0.7 (2442 passes of at most kMaxSamplesPerPass): the host's
 // double accumulation must keep the mean within 1e-6 (a float running sum would have stalled at
 // 2^24 ulps), and each pass's float sum must not drift: 0.7 is not dyadic, and summed one sample
-// after another a pass of 4096 came out 4.0e-5 low, the same way every pass. film.cl sums pairwise.
+// after another a pass of 4096 came out 4.0e-5 low, the same way every pass. film.cl sums in blocks of 16.
 TEST(FilmGuards, ZeroVarianceAccumulationOfTenMillionSamplesStaysExact) {
   expect_passes(long_accumulation(0.7, 10'000'000));
 }

@@ -1,7 +1,7 @@
 // Execution forms and kernel variants agree on the same device and seed: the megakernel (with its
 // per-path and its lockstep loop) and the wavefront (with few or many paths in flight), and the
-// scene-specialised and generic kernels, give the same image up to float rounding, as do two
-// work-group sizes (a different contraction of a*b+c can send a rare path elsewhere, hence the 99%
+// scene-specialised and generic kernels, and rolled and unrolled scene loops, give the same image
+// up to float rounding, as do two work-group sizes (a different contraction of a*b+c can send a rare path elsewhere, hence the 99%
 // criterion rather than 100%).
 #include <gtest/gtest.h>
 
@@ -20,6 +20,7 @@ struct Variant {
   size_t local_size = 0;  // 0: the form's default
   MegakernelLoop loop = MegakernelLoop::Auto;
   std::string estimator = "";  // "": the scene's
+  SceneLoops scene_loops = SceneLoops::Auto;
 };
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
@@ -29,6 +30,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     request.generic_kernel = v.generic;
     request.local_size = v.local_size;
     request.megakernel_loop = v.loop;
+    request.scene_loops = v.scene_loops;
     if (!v.estimator.empty()) request.scene.settings.estimator = v.estimator;
   });
 }
@@ -65,6 +67,21 @@ TEST_P(FormsAgree, PerPathLoopEqualsLockstepLoop) {
     expect_same_image(
         render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::PerPath, estimator}),
         render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::Lockstep, estimator}));
+  }
+}
+
+// Rolled sphere and light loops are what GPUs build (kernel_options.cpp); on PoCL they must give
+// the unrolled loops' image in both forms, for both estimators (nee traces a shadow ray through
+// the same loop and sums its light pdf over the light loop).
+TEST_P(FormsAgree, RolledSceneLoopsEqualUnrolled) {
+  for (const char* estimator : {"book", "nee"}) {
+    SCOPED_TRACE(estimator);
+    for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+      Variant rolled{form, 0, false, 0, MegakernelLoop::Auto, estimator, SceneLoops::Rolled};
+      Variant unrolled = rolled;
+      unrolled.scene_loops = SceneLoops::Unrolled;
+      expect_same_image(render_variant(GetParam(), rolled), render_variant(GetParam(), unrolled));
+    }
   }
 }
 

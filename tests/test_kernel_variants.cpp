@@ -51,6 +51,10 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
     EXPECT_EQ(p.features.lockstep_group > 0,
               v.form() == ExecutionForm::Megakernel && v.megakernel_loop() == MegakernelLoop::Lockstep);
     EXPECT_EQ(scene.settings.rr_from >= 0, v.russian_roulette());
+    // A specialised rolled variant builds with its loops rolled; every other keeps the option out.
+    const bool rolled = !v.generic() && v.scene_loops() == SceneLoops::Rolled;
+    EXPECT_EQ(kernel_build_options(p.features).find("-DCLPT_UNROLL_SCENE_LOOPS=0") != std::string::npos, rolled)
+        << v.name();
   }
 }
 

@@ -45,6 +45,7 @@ struct RenderOptions {
   bool no_cache = false;
   std::string form = "auto";
   std::string megakernel_loop = "auto";
+  std::string scene_loops = "auto";
   uint32_t paths_in_flight = 0;
   size_t local_size = 0;
   double launch_ms = 75;          // megakernel launch target, milliseconds; 0: one per pass
@@ -224,6 +225,7 @@ int run(const RenderOptions& o) {
   if (o.form != "auto")
     request.form = o.form == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
   request.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);  // CLI11 checked the word
+  request.scene_loops = *parse_scene_loops(o.scene_loops);
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
@@ -297,6 +299,11 @@ std::function<int()> add_render_command(CLI::App& app) {
                   "Megakernel: auto (lockstep on CPUs with --precision robust, else per path), path or lockstep")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "path", "lockstep"}));
+  cmd->add_option("--scene-loops", o->scene_loops,
+                  "Specialised kernels' sphere and light loops: auto (unrolled on CPUs, rolled on GPUs), "
+                  "unrolled or rolled")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "unrolled", "rolled"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
       ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
   cmd->add_option("--local-size", o->local_size,

@@ -77,6 +77,32 @@ uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Preci
   return static_cast<uint32_t>(local_size ? local_size : kDefaultLockstepGroup);
 }
 
+const char* scene_loops_name(SceneLoops loops) {
+  switch (loops) {
+    case SceneLoops::Unrolled: return "unrolled";
+    case SceneLoops::Rolled: return "rolled";
+    default: return "auto";
+  }
+}
+
+std::optional<SceneLoops> parse_scene_loops(const std::string& name) {
+  if (name == "auto") return SceneLoops::Auto;
+  if (name == "unrolled") return SceneLoops::Unrolled;
+  if (name == "rolled") return SceneLoops::Rolled;
+  return std::nullopt;
+}
+
+// CPUs unroll: PoCL vectorises only straight-line code across work-items, and the shading and
+// intersection stages of both forms are written to be that. GPUs run each work-item in a SIMD
+// lane anyway and gain nothing from straight-line code; unrolled, clang -O3 for gfx906 schedules
+// the eight intersections of the book's scenes side by side (diffuse, nee: wf_shade 86 VGPRs,
+// 2 waves per SIMD; rolled 64, 4 waves; wf_intersect 41 -> 21, 5 -> 10 waves; measured with
+// scripts/gpu_compile.sh, docs/gpu-compilers.md). No GPU has timed either yet.
+bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device) {
+  if (loops == SceneLoops::Auto) return device.is_cpu;
+  return loops == SceneLoops::Unrolled;
+}
+
 KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
   f.precision = precision;
@@ -117,6 +143,9 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (features.sphere_count > 0) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
   if (!features.generic && features.light_count >= 0) o << " -DCLPT_LIGHT_COUNT=" << features.light_count;
   if (features.lockstep_group > 0) o << " -DCLPT_LOCKSTEP_GROUP=" << features.lockstep_group;
+  // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
+  const bool specialised_loops = features.sphere_count > 0 || (!features.generic && features.light_count >= 0);
+  if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -149,15 +178,19 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                                               : "left out (no glass material in the scene)")
     << "\n";
   o << "  sphere loop: "
-    << (features.sphere_count > 0 ? "unrolled for the scene's " + std::to_string(features.sphere_count) + " spheres"
+    << (features.sphere_count > 0 ? "fixed at the scene's " + std::to_string(features.sphere_count) + " spheres"
                                   : std::string("run-time sphere count (generic kernel)"))
     << "\n";
   if (!features.generic && features.estimator == Estimator::Nee)
     o << "  light loop: "
-      << (features.light_count >= 0 ? "unrolled for the scene's " + std::to_string(features.light_count) +
+      << (features.light_count >= 0 ? "fixed at the scene's " + std::to_string(features.light_count) +
                                           " sampled light(s)"
                                     : std::string("run-time light count"))
       << "\n";
+  if (features.sphere_count > 0)
+    o << "  scene loops: " << (features.unroll_scene_loops ? "unrolled" : "rolled") << " (--scene-loops "
+      << scene_loops_name(features.scene_loops)
+      << (features.scene_loops == SceneLoops::Auto ? ": unrolled on CPUs, rolled on GPUs" : "") << ")\n";
   o << "  megakernel loop: "
     << (features.lockstep_group > 0 ? "lockstep, work-groups of " + std::to_string(features.lockstep_group)
         : features.megakernel_loop == MegakernelLoop::Auto

@@ -52,6 +52,20 @@ constexpr uint32_t kDefaultLockstepGroup = 64;
 // the user's --local-size, 0 for none), or 0 for the per-path loop.
 uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size);
 
+// The scene-specialised sphere and light loops (CLPT_SPHERE_COUNT, CLPT_LIGHT_COUNT;
+// `--scene-loops`). Only a specialised kernel has them; the generic one loops over run-time counts.
+//   auto:     unrolled on CPU devices, rolled on GPUs
+//   unrolled: straight-line code, which PoCL vectorises across work-items (a loop stops it)
+//   rolled:   a loop with a fixed trip count: on a GPU the unrolled spheres' intersections are
+//             scheduled side by side and keep their temporaries live together; the loop needs a
+//             quarter fewer registers in shading and half in intersection (docs/gpu-compilers.md)
+enum class SceneLoops { Auto, Unrolled, Rolled };
+const char* scene_loops_name(SceneLoops loops);
+// "auto" | "unrolled" | "rolled"; nullopt otherwise.
+std::optional<SceneLoops> parse_scene_loops(const std::string& name);
+// Whether a kernel for this device unrolls its scene loops.
+bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device);
+
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)
   std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
@@ -61,10 +75,12 @@ struct KernelFeatures {
   bool russian_roulette = true;   // CLPT_HAS_RR
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
-  int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (loop unrolled); 0: read at run time
-  int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop unrolled); -1: run time
+  int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
+  int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop fixed likewise); -1: run time
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:
   uint32_t lockstep_group = 0;  // CLPT_LOCKSTEP_GROUP when > 0 (megakernel.cl); 0: per-path loop
+  SceneLoops scene_loops = SceneLoops::Auto;  // the request; resolved per device into:
+  bool unroll_scene_loops = true;  // false: CLPT_UNROLL_SCENE_LOOPS=0 (a specialised kernel only)
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

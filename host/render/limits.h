@@ -21,8 +21,10 @@ constexpr uint64_t kMaxSpp = 1ull << 31;           // sample indices are 32-bit 
 constexpr size_t kMaxSpheres = 4096;
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
-// kernels/film.cl sums a pass pairwise in CLPT_PAIRWISE_LEVELS = 13 levels: up to 8191 samples.
-static_assert(kMaxSamplesPerPass < (1u << 13), "film.cl's pairwise sum has 13 levels");
+// kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose
+// error bound (about 45 ulps) holds up to 16^3 samples; a larger pass would still be summed, with
+// a longer sequential outermost level and a looser bound.
+static_assert(kMaxSamplesPerPass <= 16 * 16 * 16, "film.cl's blocked sum has three levels of 16");
 
 // The most bytes of one per-launch buffer on any device (launch_buffer_budget).
 constexpr uint64_t kMaxLaunchBufferBytes = uint64_t(256) << 20;

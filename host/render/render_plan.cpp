@@ -88,6 +88,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
       request.generic_kernel ? generic_features(request.precision) : features_for_scene(scene, request.precision);
   features.intersection = request.intersection;
   features.megakernel_loop = request.megakernel_loop;
+  features.scene_loops = request.scene_loops;
 
   for (size_t i = 0; i < devices.size(); ++i) {
     DevicePlan d;
@@ -96,6 +97,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     d.form = request.form.value_or(default_form_for(d.device));
     d.form_reason = request.form ? "--form" : "the device's default";
     d.features = features;
+    d.features.unroll_scene_loops = scene_loops_unrolled_for(request.scene_loops, d.device);
     if (d.form == ExecutionForm::Megakernel) {
       d.entry_file = "megakernel.cl";
       d.features.lockstep_group =

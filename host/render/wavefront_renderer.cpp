@@ -23,7 +23,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   if (local_size_ > kMaxLocalSize)
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(local_size_) + ": the wavefront's work-groups hold at most " +
                                      std::to_string(kMaxLocalSize) + " work-items");
-  program_ = build(ctx, "wavefront.cl", features);
+  program_ = build(ctx, "wavefront.cl", features);  // scene loops as planned (render_plan.h)
   generate_ = Kernel(program_.get(), "wf_generate", ctx.where());
   intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where());
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());

@@ -9,7 +9,7 @@ namespace clpt {
 namespace {
 
 // Dimension positions in KernelVariant::choice.
-enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kPhong, kGlass, kDimCount };
+enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kDimCount };
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
 using Pair = std::tuple<int, int, int, int>;
@@ -56,10 +56,11 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"estimator", {"book", "nee"}},
       {"russian-roulette", {"no-rr", "rr"}},
       {"specialisation", {"specialised", "generic"}},
+      {"scene-loops", {"unrolled", "rolled"}},
       {"phong", {"no-phong", "phong"}},
       {"glass", {"no-glass", "glass"}},
   };
-  static_assert(kDimCount == 7, "one entry per Dim");
+  static_assert(kDimCount == 8, "one entry per Dim");
   return dims;
 }
 
@@ -75,6 +76,9 @@ Precision KernelVariant::precision() const {
 Estimator KernelVariant::estimator() const { return choice[kEstimator] == 1 ? Estimator::Nee : Estimator::Book; }
 bool KernelVariant::russian_roulette() const { return choice[kRussianRoulette] == 1; }
 bool KernelVariant::generic() const { return choice[kSpecialisation] == 1; }
+SceneLoops KernelVariant::scene_loops() const {
+  return choice[kSceneLoops] == 1 ? SceneLoops::Rolled : SceneLoops::Unrolled;
+}
 bool KernelVariant::has_phong() const { return choice[kPhong] == 1; }
 bool KernelVariant::has_glass() const { return choice[kGlass] == 1; }
 
@@ -152,6 +156,7 @@ void apply_variant(const KernelVariant& variant, RenderRequest& request) {
   request.megakernel_loop = variant.megakernel_loop();
   request.precision = variant.precision();
   request.generic_kernel = variant.generic();
+  request.scene_loops = variant.scene_loops();
 }
 
 VariantProgram variant_program(const Scene& scene, const KernelVariant& variant) {
@@ -160,6 +165,8 @@ VariantProgram variant_program(const Scene& scene, const KernelVariant& variant)
   p.features = variant.generic() ? generic_features(variant.precision())
                                  : features_for_scene(scene, variant.precision());
   p.features.megakernel_loop = variant.megakernel_loop();
+  p.features.scene_loops = variant.scene_loops();
+  p.features.unroll_scene_loops = variant.scene_loops() == SceneLoops::Unrolled;
   if (variant.form() == ExecutionForm::Megakernel && variant.megakernel_loop() == MegakernelLoop::Lockstep)
     p.features.lockstep_group = kDefaultLockstepGroup;
   return p;

@@ -1,7 +1,7 @@
 // The covering set of kernel variants: a few kernel configurations that together contain every
 // value of every dimension that changes what a kernel compiles (execution form and megakernel
-// loop, precision, estimator, Russian roulette, specialised or generic, each material present or
-// absent) and every pair of values of two dimensions. Two test tiers use the same set:
+// loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
+// unrolled or rolled, each material present or absent) and every pair of values of two dimensions. Two test tiers use the same set:
 //   xdev   renders each on Oclgrind with its memory, race and API checks, and against PoCL
 //   gpucc  compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
 //          (`clpt kernels emit` writes their sources and build options)
@@ -37,10 +37,11 @@ struct KernelVariant {
   Estimator estimator() const;
   bool russian_roulette() const;
   bool generic() const;
+  SceneLoops scene_loops() const;  // Unrolled or Rolled (a generic kernel has no fixed loops)
   bool has_phong() const;  // the scene has a Phong ball
   bool has_glass() const;  // the scene has a glass ball
 
-  // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.phong.no-glass";
+  // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
   std::string name() const;
 };
