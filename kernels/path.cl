@@ -27,6 +27,7 @@
 
 #include "types.h"
 #include "maths.cl"
+#include "path_state.h"
 #include "rng.cl"
 #include "camera.cl"
 #include "intersect.cl"
@@ -50,19 +51,9 @@
 #define CLPT_NEE_ON(params) ((params)->estimator == CLPT_ESTIMATOR_NEE)
 #endif
 
+/* One path's state: the fields of CLPT_PATH_FIELDS (path_state.h), where each is documented. */
 typedef struct PathState {
-  Vec3 origin;       /* camera-relative world units */
-  Vec3 direction;    /* unit */
-  Vec3 throughput;   /* product of BSDF weights so far */
-  Vec3 radiance;     /* light gathered so far */
-  uint pixel;        /* global pixel index, row-major, row 0 at the top */
-  uint sample;       /* global sample index within the pixel */
-  real bsdf_pdf;     /* solid-angle pdf of the BSDF sample that made the current ray; 0: camera
-                        ray or specular (no MIS at a light it hits) */
-  uint bounce;       /* index of the current segment: 0 = camera ray */
-  uint segments;     /* segments traced so far (for rays/s) */
-  int skip_sphere;   /* sphere the ray is leaving on its outer side (cannot be hit), or -1 */
-  int alive;         /* 0 once the path has ended */
+  CLPT_PATH_STATE_MEMBERS
 } PathState;
 
 CLPT_INLINE RngKey rng_key_of(const GpuRenderParams* params) {
@@ -177,17 +168,7 @@ CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* sph
  * vectoriser, see v3_select). */
 CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
   PathState p;
-  p.origin = v3_select(c, a.origin, b.origin);
-  p.direction = v3_select(c, a.direction, b.direction);
-  p.throughput = v3_select(c, a.throughput, b.throughput);
-  p.radiance = v3_select(c, a.radiance, b.radiance);
-  p.pixel = c ? a.pixel : b.pixel;
-  p.sample = c ? a.sample : b.sample;
-  p.bsdf_pdf = c ? a.bsdf_pdf : b.bsdf_pdf;
-  p.bounce = c ? a.bounce : b.bounce;
-  p.segments = c ? a.segments : b.segments;
-  p.skip_sphere = c ? a.skip_sphere : b.skip_sphere;
-  p.alive = c ? a.alive : b.alive;
+  CLPT_PATH_SELECT_FIELDS
   return p;
 }
 

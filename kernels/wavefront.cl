@@ -31,39 +31,17 @@
 
 CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_STATE_PARAMS) {
   PathState p;
+  CLPT_PATH_LOAD_FIELDS
   const uint j = job[slot];
-  p.origin = v3(origin_x[slot], origin_y[slot], origin_z[slot]);
-  p.direction = v3(direction_x[slot], direction_y[slot], direction_z[slot]);
-  p.throughput = v3(throughput_r[slot], throughput_g[slot], throughput_b[slot]);
-  p.radiance = v3(radiance_r[slot], radiance_g[slot], radiance_b[slot]);
-  p.bsdf_pdf = CLPT_NEE_COMPILED ? bsdf_pdf[slot] : (real)0;
   p.pixel = params->pixel_begin + j % params->pixel_count;
   p.sample = params->sample_begin + j / params->pixel_count;
-  p.bounce = bounce[slot];
-  p.segments = segments[slot];
-  p.skip_sphere = skip_sphere[slot];
-  p.alive = 1;
+  p.alive = 1;  /* only living paths are stored */
   return p;
 }
 
 CLPT_INLINE void path_store(uint slot, uint job_index, const PathState* p CLPT_STATE_PARAMS) {
-  origin_x[slot] = p->origin.x;
-  origin_y[slot] = p->origin.y;
-  origin_z[slot] = p->origin.z;
-  direction_x[slot] = p->direction.x;
-  direction_y[slot] = p->direction.y;
-  direction_z[slot] = p->direction.z;
-  throughput_r[slot] = p->throughput.x;
-  throughput_g[slot] = p->throughput.y;
-  throughput_b[slot] = p->throughput.z;
-  radiance_r[slot] = p->radiance.x;
-  radiance_g[slot] = p->radiance.y;
-  radiance_b[slot] = p->radiance.z;
-  if (CLPT_NEE_COMPILED) bsdf_pdf[slot] = p->bsdf_pdf;
+  CLPT_PATH_STORE_FIELDS
   job[slot] = job_index;
-  bounce[slot] = p->bounce;
-  segments[slot] = p->segments;
-  skip_sphere[slot] = p->skip_sphere;
 }
 
 /* Starts jobs job_begin + i in slots slot_begin + i, for i < count. */

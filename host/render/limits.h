@@ -58,8 +58,9 @@ struct MemoryEstimate {
 
 // The buffers MegakernelRenderer / WavefrontRenderer allocate for `pixels` pixels and
 // `spheres` spheres (paths_in_flight: the wavefront's path slots as planned, render_plan.h): the sphere buffer (96 B each) and pass statistics (32 B per pixel of a
-// launch) for both; the wavefront adds paths_in_flight x 252 B of path state (two sets of 17
-// fields, 2 scratch fields, at the double preset's sizes, the largest) and job results of 16 B per sample of a pass, with
+// launch) for both; the wavefront adds paths_in_flight x the bytes of one path slot (the
+// buffers of kernels/path_state.h twice and its scratch once, at the double preset's sizes, the
+// largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device);
