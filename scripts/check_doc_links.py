@@ -4,10 +4,10 @@
     scripts/check_doc_links.py    exit 1, naming file and line, for each reference that fails
 
 Every mention of a Markdown file (`numerics.md`, `docs/design.md`, `[x](../README.md)`) in a file
-git tracks must name a file of the repository, relative to the mentioning file's directory or to
-the repository's root; and nothing may point into the notes kept beside the repository
+git tracks must name a file of the repository, relative to the mentioning file's directory, to the
+repository's root or to docs/; and nothing may point into the notes kept beside the repository
 (`../shared/`), which a clone does not have. Web addresses (provenance of data, upstream issues)
-are not checked, nor are files a command writes (`out/...`, `${DIR}/name.md`).
+are not checked, nor are files a command writes (`out/...`, `${DIR}/name.md`, `OUTDIR/name.md`).
 """
 import os
 import re
@@ -37,12 +37,13 @@ def main():
                     before = line[:match.start()]
                     if re.search(r"https?://\S*$", before):
                         continue  # part of a web address
-                    if ref.startswith("out/") or before.endswith(("/", "$", "}")) or ref.startswith("/"):
+                    placeholder = re.match(r"[A-Z_]+/", ref)  # OUTDIR/..., DIR/...: a command's argument
+                    if ref.startswith("out/") or before.endswith(("/", "$", "}")) or ref.startswith("/") or placeholder:
                         continue  # an output a command writes, not a document of the tree
                     if (path, number, ref) in seen:
                         continue
                     seen.add((path, number, ref))
-                    if not any(os.path.isfile(os.path.normpath(os.path.join(ROOT, base, ref))) for base in (here, "")):
+                    if not any(os.path.isfile(os.path.normpath(os.path.join(ROOT, base, ref))) for base in (here, "", "docs")):
                         problems.append(f"{path}:{number}: '{ref}' is no file of the repository")
     for p in problems:
         print(p)
