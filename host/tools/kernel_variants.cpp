@@ -3,6 +3,7 @@
 #include <set>
 #include <tuple>
 
+#include "render/render_plan.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -160,16 +161,22 @@ void apply_variant(const KernelVariant& variant, RenderRequest& request) {
 }
 
 VariantProgram variant_program(const Scene& scene, const KernelVariant& variant) {
-  VariantProgram p;
-  p.entry_file = variant.form() == ExecutionForm::Wavefront ? "wavefront.cl" : "megakernel.cl";
-  p.features = variant.generic() ? generic_features(variant.precision())
-                                 : features_for_scene(scene, variant.precision());
-  p.features.megakernel_loop = variant.megakernel_loop();
-  p.features.scene_loops = variant.scene_loops();
-  p.features.unroll_scene_loops = variant.scene_loops() == SceneLoops::Unrolled;
-  if (variant.form() == ExecutionForm::Megakernel && variant.megakernel_loop() == MegakernelLoop::Lockstep)
-    p.features.lockstep_group = kDefaultLockstepGroup;
-  return p;
+  // The render plan decides, as for a render on a GPU: the variant fixes the form, the loop and
+  // the scene loops explicitly, so no device property is left for the plan to choose from.
+  RenderRequest request;
+  request.scene = scene;
+  request.form = variant.form();
+  request.megakernel_loop = variant.megakernel_loop();
+  request.precision = variant.precision();
+  request.generic_kernel = variant.generic();
+  request.scene_loops = variant.scene_loops();
+  DeviceInfo gpu;
+  gpu.name = "a GPU compiler's target";
+  gpu.type = "GPU";
+  gpu.is_gpu = true;
+  gpu.fp64 = true;
+  const DevicePlan planned = plan_render(request, {gpu}).devices.front();
+  return {planned.entry_file, planned.features};
 }
 
 }  // namespace clpt
