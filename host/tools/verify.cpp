@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cl/cl_device.h"
-#include "io/image_io.h"
+#include "io/render_file.h"
 #include "render/fault_injection.h"
 #include "render/render_session.h"
 #include "scene/scene_loader.h"
@@ -59,34 +59,14 @@ std::string reference_file(const std::string& dir, const std::string& scene) {
       .string();
 }
 
-// The mean and variance channels of a gemspt reference (R, G, B, variance.R/G/B), checked for size.
+// A gemspt reference: a render file (io/render_file.h) of the references' size.
 MeanVarianceImage load_reference(const std::string& path) {
-  const LoadedImage img = read_image(path);
-  if (img.width != kBuiltinWidth || img.height != kBuiltinHeight)
+  RenderFile file = read_render_file(path);
+  if (file.image.width != kBuiltinWidth || file.image.height != kBuiltinHeight)
     throw Error(ExitCode::Usage, path + ": a gemspt reference must be " + std::to_string(kBuiltinWidth) + "x" +
                                      std::to_string(kBuiltinHeight) + ", this one is " +
-                                     std::to_string(img.width) + "x" + std::to_string(img.height));
-  int mean[3], variance[3];
-  for (int c = 0; c < 3; ++c) {
-    const std::string name(1, kChannels[c]);
-    mean[c] = img.channel(name);
-    variance[c] = img.channel("variance." + name);
-    if (mean[c] < 0 || variance[c] < 0)
-      throw Error(ExitCode::Usage, path + ": no channel '" + (mean[c] < 0 ? name : "variance." + name) +
-                                       "'; a reference needs R, G, B and variance.R, variance.G, variance.B");
-  }
-  MeanVarianceImage out;
-  out.width = img.width;
-  out.height = img.height;
-  const size_t pixels = size_t(img.width) * img.height, stride = img.channels.size();
-  out.mean.resize(pixels * 3);
-  out.variance.resize(pixels * 3);
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) {
-      out.mean[p * 3 + c] = img.pixels[p * stride + mean[c]];
-      out.variance[p * 3 + c] = img.pixels[p * stride + variance[c]];
-    }
-  return out;
+                                     std::to_string(file.image.width) + "x" + std::to_string(file.image.height));
+  return std::move(file.image);
 }
 
 MeanVarianceImage from_film(const Film& film) {
