@@ -85,9 +85,11 @@ TEST_P(GpuAgainstCpu, SameImageStatistically) {
   std::printf("%s on %s: %s (same seed)\n", GetParam().c_str(), real_gpu ? "the GPU" : "Oclgrind",
               same.describe().c_str());
   if (!real_gpu) {
-    // Measured 2026-12-01 (Oclgrind 21.10 against PoCL 3.1; docs/oclgrind.md).
+    // Measured 2026-12-01 (Oclgrind 21.10 against PoCL 3.1; docs/oclgrind.md): 100% of the values
+    // and image means within 3.4e-9 on all three scenes (robust: no path went elsewhere). The
+    // bounds leave room for 5 of the 512 pixels to differ, and for float rounding in the means.
     EXPECT_GE(same.close_fraction, 0.99) << GetParam() << ": " << same.describe();
-    EXPECT_LE(same.worst_mean_difference(), 1e-4) << GetParam() << ": " << same.describe();
+    EXPECT_LE(same.worst_mean_difference(), 1e-6) << GetParam() << ": " << same.describe();
   }
 }
 
