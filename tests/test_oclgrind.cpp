@@ -32,23 +32,28 @@ void PrintTo(const KernelVariant& variant, std::ostream* out) { *out << variant.
 namespace clpt::test {
 namespace {
 
-#define REQUIRE_OCLGRIND()                             \
-  do {                                                 \
-    std::string why;                                   \
-    if (!oclgrind_present(why)) FAIL() << why;         \
+#define REQUIRE_OCLGRIND()                     \
+  do {                                         \
+    std::string why;                           \
+    if (!oclgrind_present(why)) FAIL() << why; \
   } while (0)
 
 // The Oclgrind device, for the probes.
 DeviceInfo oclgrind_device() { return select_device(list_devices(), "oclgrind"); }
+
+// A kernel of tests/kernels/probe_oclgrind.cl built on `ctx` (a kernel keeps its program alive).
+Kernel probe_kernel(DeviceContext& ctx, const char* name) {
+  const ProgramHandle program =
+      ctx.build_program(assemble_kernel_source("probe_oclgrind.cl"), "-cl-std=CL1.2", "probe_oclgrind.cl");
+  return Kernel(program.get(), name, ctx.where());
+}
 
 TEST(OclgrindChecks, OutOfBoundsWriteIsReported) {
   REQUIRE_OCLGRIND();
   StderrCapture capture("probe");
   {
     DeviceContext ctx(oclgrind_device());
-    ProgramHandle program = ctx.build_program(assemble_kernel_source("probe_oclgrind.cl"), "-cl-std=CL1.2",
-                                              "probe_oclgrind.cl");
-    Kernel kernel(program.get(), "probe_out_of_bounds", ctx.where());
+    Kernel kernel = probe_kernel(ctx, "probe_out_of_bounds");
     Buffer out(ctx, 16 * sizeof(cl_uint), CL_MEM_READ_WRITE, "probe");
     kernel.set_arg(0, out);
     ctx.launch(kernel, 16, 16, "probe_out_of_bounds");
@@ -64,9 +69,7 @@ TEST(OclgrindChecks, DataRaceIsReported) {
   StderrCapture capture("probe");
   {
     DeviceContext ctx(oclgrind_device());
-    ProgramHandle program = ctx.build_program(assemble_kernel_source("probe_oclgrind.cl"), "-cl-std=CL1.2",
-                                              "probe_oclgrind.cl");
-    Kernel kernel(program.get(), "probe_data_race", ctx.where());
+    Kernel kernel = probe_kernel(ctx, "probe_data_race");
     Buffer out(ctx, sizeof(cl_uint), CL_MEM_READ_WRITE, "probe");
     kernel.set_arg(0, out);
     ctx.launch(kernel, 8, 8, "probe_data_race");
@@ -82,9 +85,7 @@ TEST(OclgrindChecks, FailedApiCallIsReported) {
   cl_int err = CL_SUCCESS;
   {
     DeviceContext ctx(oclgrind_device());
-    ProgramHandle program = ctx.build_program(assemble_kernel_source("probe_oclgrind.cl"), "-cl-std=CL1.2",
-                                              "probe_oclgrind.cl");
-    Kernel kernel(program.get(), "probe_data_race", ctx.where());
+    Kernel kernel = probe_kernel(ctx, "probe_data_race");
     const cl_uint wrong = 0;  // the argument is a buffer: a 4-byte value is the wrong size
     err = clSetKernelArg(kernel.get(), 0, sizeof wrong, &wrong);
   }
@@ -121,7 +122,6 @@ RenderRequest variant_request(const KernelVariant& variant, const std::string& d
   // detector, whose cost follows the size of the buffers, runs 3x faster than with the default
   // 65536 slots it gives a "GPU" (10.7 s against 3.2 s at 4 spp).
   request.paths_in_flight = 64;
-  return request;
   return request;
 }
 
