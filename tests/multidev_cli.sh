@@ -7,7 +7,9 @@
 #    it equals the same seed's film exactly);
 #  * device 1 failing its build: the render completes on device 0, the image of that seed;
 #  * every device failing: exit 4, both errors printed, no output file;
-#  * --device 0,0 / 7 / all, : usage errors (exit 2) naming --device and the entry.
+#  * --device 0,0 / 7 / all, : usage errors (exit 2) naming --device and the entry;
+#  * --explain prints the render plan once per selected device, after selection, with each
+#    device's own form and loop (device 1 asked for the wavefront's path pool by --form).
 #   multidev_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -31,6 +33,18 @@ count() { grep -c -- "$1" "$2"; }
 
 render plain.exr 1 --device 0
 expect_exit $? 0 "plain render on device 0" plain.exr
+
+# The plan: one block per device of the list, each resolved for its device.
+render explain.exr 1 --device 0,1 --explain
+expect_exit $? 0 "render --explain on two devices" explain.exr
+[[ $(count "^render plan: 64x48, 64 spp" explain.exr.out) -eq 1 ]] || { fail "no render plan line"; cat explain.exr.out; }
+[[ $(count "^device [01]: device '" explain.exr.out) -eq 2 ]] || { fail "not one plan block per device"; cat explain.exr.out; }
+[[ $(count "megakernel loop: lockstep, work-groups of 64" explain.exr.out) -eq 2 ]] ||
+  { fail "the CPU devices' resolved lockstep loop is not printed"; cat explain.exr.out; }
+render explain_wf.exr 1 --device 1 --form wavefront --paths-in-flight 4096 --explain
+expect_exit $? 0 "render --explain --form wavefront" explain_wf.exr
+grep -q "execution form: wavefront (--form)" explain_wf.exr.out && grep -q "path pool: 4096 paths in flight" explain_wf.exr.out ||
+  { fail "the wavefront plan is not printed"; cat explain_wf.exr.out; }
 
 # A launch failing mid-render: the work goes to the other device. Launches of about 1 ms, so that
 # each device has many (the whole render takes a few tens of ms on PoCL).

@@ -122,11 +122,24 @@ void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
   std::vector<Member*> working;
   for (const auto& m : members_)
     if (!m->failed) working.push_back(m.get());
+  // Every working device gets its first range of the pass here, in --device order, before any
+  // device thread runs. Left to the threads, whether a device took part in a pass depended on how
+  // soon its thread reached the queue: a fast device could empty a small pass in its first few
+  // launches before a slow device's thread had started (seen with PoCL beside the Oclgrind
+  // simulator when the machine was loaded: the simulator traced nothing in 1 of 6 runs). Handed
+  // out here, each device starts the pass at once with work in hand, and what it traces follows
+  // from the measured rates alone (test_oclgrind.cpp's mixed render relies on that).
+  std::vector<Taken> first(working.size());
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (size_t i = 0; i < working.size() && !pass.queue.empty(); ++i)
+      first[i] = take_range(*working[i], pass, params.samples_per_pass);
+  }
   // The first working device runs on this thread: a single-device render starts no thread.
   std::vector<std::thread> threads;
   for (size_t i = 1; i < working.size(); ++i)
-    threads.emplace_back([&, i] { work(*working[i], params, film, pass); });
-  if (!working.empty()) work(*working[0], params, film, pass);
+    threads.emplace_back([&, i] { work(*working[i], params, film, pass, first[i]); });
+  if (!working.empty()) work(*working[0], params, film, pass, first[0]);
   for (std::thread& t : threads) t.join();
   if (fatal_) std::rethrow_exception(fatal_);
   if (!pass.queue.empty()) throw_every_device_failed();
@@ -138,20 +151,18 @@ void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
 
 // One device's loop within a pass: take a range, trace it, add it to the film; until the queue
 // is empty and no range is in flight (a range in flight may still come back from a failure).
-void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, PassState& pass) {
+void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, PassState& pass, Taken first) {
   try {
     for (;;) {
-      PixelRange range;
-      uint64_t launch = 0;
-      {
+      Taken taken = std::exchange(first, Taken{});
+      if (taken.range.count == 0) {
         std::unique_lock<std::mutex> lock(mutex_);
         changed_.wait(lock, [&] { return fatal_ || !pass.queue.empty() || pass.in_flight == 0; });
         if (fatal_ || pass.queue.empty()) return;
-        range = pass.queue.take(range_pixels(m, pass.queue.remaining(), params.samples_per_pass));
-        m.previous_pixels = range.count;
-        launch = ++m.launches_started;
-        ++pass.in_flight;
+        taken = take_range(m, pass, params.samples_per_pass);
       }
+      const PixelRange range = taken.range;
+      const uint64_t launch = taken.launch;
       GpuRenderParams p = params;
       p.pixel_begin = range.begin;
       p.pixel_count = range.count;
@@ -191,6 +202,15 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, Pass
     if (!fatal_) fatal_ = std::current_exception();
     changed_.notify_all();
   }
+}
+
+DevicePool::Taken DevicePool::take_range(Member& m, PassState& pass, uint32_t samples) {
+  Taken t;
+  t.range = pass.queue.take(range_pixels(m, pass.queue.remaining(), samples));
+  m.previous_pixels = t.range.count;
+  t.launch = ++m.launches_started;
+  ++pass.in_flight;
+  return t;
 }
 
 uint32_t DevicePool::range_pixels(Member& m, uint32_t remaining, uint32_t samples) const {

@@ -77,8 +77,18 @@ class DevicePool {
   struct Member;
   struct PassState;
 
+  // A range taken from the pass's queue, with its number among the member's launches (1 = its
+  // first; what CLPT_INJECT_FAULT counts). count 0: none.
+  struct Taken {
+    PixelRange range;
+    uint64_t launch = 0;
+  };
+
   void build(Member& member, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene);
-  void work(Member& member, const GpuRenderParams& params, Film& film, PassState& pass);
+  // `first`: the range run_pass handed the member before its thread started.
+  void work(Member& member, const GpuRenderParams& params, Film& film, PassState& pass, Taken first);
+  // Takes member's next range from a non-empty queue; called under mutex_.
+  Taken take_range(Member& member, PassState& pass, uint32_t samples);
   // Pixels of member's next range; called under mutex_.
   uint32_t range_pixels(Member& member, uint32_t remaining, uint32_t samples) const;
   // Marks member failed with the exception being handled; called under mutex_.

@@ -1,10 +1,11 @@
 // The covering set of kernel variants: a few kernel configurations that together contain every
 // value of every dimension that changes what a kernel compiles (execution form and megakernel
 // loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
-// unrolled or rolled, each material present or absent) and every pair of values of two dimensions. Two test tiers use the same set:
-//   xdev   renders each on Oclgrind with its memory, race and API checks, and against PoCL
-//   gpucc  compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
-//          (`clpt kernels emit` writes their sources and build options)
+// unrolled or rolled, each material present or absent) and every pair of values of two
+// dimensions. Two test tiers use the same set:
+//   oclgrind  renders each on Oclgrind with its memory, race and API checks, and against PoCL
+//   gpucc     compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
+//             (`clpt kernels emit` writes their sources and build options)
 // A later feature that changes what kernels compile adds its dimension to
 // kernel_variant_dimensions() (and its effect to apply_variant / variant_program); both tiers
 // then cover it, alone and in pairs, with no other change.
