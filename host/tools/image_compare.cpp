@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
+
+#include "util/appendf.h"
 
 namespace clpt {
 namespace {
@@ -136,16 +137,6 @@ ImageMeanResult test_image_mean(const MeanVarianceImage& a, const MeanVarianceIm
     r.pass = r.pass && accepts(whole.z[c], alpha);
   }
   return r;
-}
-
-// printf into a std::string.
-__attribute__((format(printf, 2, 3))) void appendf(std::string& out, const char* format, ...) {
-  char buffer[512];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
-  out += buffer;
 }
 
 const char* verdict(bool pass) { return pass ? "PASS" : "FAIL"; }

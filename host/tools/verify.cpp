@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -13,6 +12,7 @@
 #include "render/fault_injection.h"
 #include "render/render_session.h"
 #include "scene/scene_loader.h"
+#include "util/appendf.h"
 #include "util/error.h"
 
 #ifndef CLPT_SOURCE_TREE
@@ -26,15 +26,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* kPoclPlatform = "Portable Computing Language";
 constexpr const char* kChannels = "RGB";
-
-void appendf(std::string& out, const char* format, ...) {
-  char buffer[1024];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
-  out += buffer;
-}
 
 // The directory holding this executable, or "" where /proc/self/exe cannot be read.
 fs::path executable_dir() {
