@@ -22,7 +22,7 @@ TEXT = re.compile(r"\.(h|hpp|cpp|cl|sh|cmake|py|md|txt|toml)$|(^|/)(run|CMakeLis
 
 
 def main():
-    files = subprocess.run(["git", "-C", ROOT, "ls-files"], check=True, capture_output=True, text=True).stdout.split()
+    files = subprocess.run(["git", "-C", ROOT, "ls-files", "--cached", "--others", "--exclude-standard"], check=True, capture_output=True, text=True).stdout.split()
     problems, seen = [], set()
     for path in files:
         if not TEXT.search(path) or not os.path.exists(os.path.join(ROOT, path)) or path == SELF:

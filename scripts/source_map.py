@@ -8,8 +8,8 @@ A header and its implementation (foo.h, foo.cpp) share one entry, described by w
 opens with a comment. The opening comment is the first comment block of the file (after a `#!`
 line), up to its first blank comment line; `//`, `/* */`, `#` comments and Python docstrings
 are read. A file (or
-pair) without one is an error: every file says what it is for. Only files git tracks are mapped,
-so build products never appear.
+pair) without one is an error: every file says what it is for. Only files git tracks, or would
+track (not yet added, not ignored), are mapped, so build products never appear.
 """
 import os
 import re
@@ -26,8 +26,9 @@ SKIP = re.compile(r"^tests/(scenes|reference|fuzz/.*\.dict)")
 
 
 def tracked_files():
-    out = subprocess.run(["git", "-C", ROOT, "ls-files"], check=True, capture_output=True, text=True).stdout
-    return [f for f in out.splitlines() if f.split("/")[0] in AREAS and SOURCE.search(f) and not SKIP.match(f)]
+    out = subprocess.run(["git", "-C", ROOT, "ls-files", "--cached", "--others", "--exclude-standard"], check=True, capture_output=True, text=True).stdout
+    return [f for f in out.splitlines() if f.split("/")[0] in AREAS and SOURCE.search(f) and not SKIP.match(f)
+            and os.path.isfile(os.path.join(ROOT, f))]
 
 
 def opening_comment(path):
