@@ -7,9 +7,9 @@
 A header and its implementation (foo.h, foo.cpp) share one entry, described by whichever of them
 opens with a comment. The opening comment is the first comment block of the file (after a `#!`
 line), up to its first blank comment line; `//`, `/* */`, `#` comments and Python docstrings
-are read. A file (or
-pair) without one is an error: every file says what it is for. Only files git tracks, or would
-track (not yet added, not ignored), are mapped, so build products never appear.
+are read. A file (or pair) without one is an error: every file says what it is for. Only files
+git tracks, or would track (not yet added, not ignored), are mapped, so build products never
+appear.
 """
 import os
 import re
