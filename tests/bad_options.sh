@@ -89,6 +89,8 @@ fi
 expect 2 "--resume missing.ckpt: cannot open checkpoint" -- render "$scene" --resume missing.ckpt -o out.exr
 expect 2 "the checkpoint's seed 1 does not match this render's seed 2" \
   -- render "$scene" --width 8 --height 8 --sampler jitter --spp 4 --seed 2 --resume "$inputs/seed1.ckpt" -o out.exr
+expect 2 "the checkpoint's sampler jitter does not match this render's sampler sobol" \
+  -- render "$scene" --width 8 --height 8 --sampler sobol --spp 4 --resume "$inputs/seed1.ckpt" -o out.exr
 
 if [[ $failures -ne 0 ]]; then
   echo "$failures bad-option case(s) failed"
