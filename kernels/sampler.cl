@@ -26,14 +26,16 @@
 #include "maths.cl"
 #include "rng.cl"
 
-/* Reverses the 32 bits of x (OpenCL C 1.2 has no built-in for it): swaps of halves, bytes,
- * nibbles, pairs and bits. */
+/* Reverses the 32 bits of x (OpenCL C 1.2 has no built-in for it): swaps of bits, pairs,
+ * nibbles and bytes reverse each 16-bit half, and a rotation by 16 swaps the halves. The last
+ * step is the rotate() built-in, not shifts: written with shifts, clang recognises the whole
+ * as llvm.bitreverse, an intrinsic Oclgrind cannot run ("Undefined external function"). */
 CLPT_INLINE uint sobol_reverse_bits(uint x) {
   x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
   x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
   x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
   x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-  return (x >> 16) | (x << 16);
+  return rotate(x, 16u);
 }
 
 /* A random bijection of 32-bit words, chosen by seed, in which output bit j is input bit j XOR a
@@ -91,8 +93,10 @@ CLPT_INLINE SobolPoint sobol_point(uint sample_reversed, uint shuffle_seed, uint
  * with 24 random bits. One Philox evaluation serves both samplers: jitter's is addressed by
  * (pixel, sample, dimension, 0), the same numbers as before the Sobol sampler existed; Sobol's
  * seeds by (pixel, 0, dimension, 1), which no jitter draw uses. Sobol's second pair takes its
- * seeds from the fourth word and the first pair's seeds mixed with it through bijections, so
- * each of them is uniform. */
+ * shuffle seed from the fourth word, independent of the first pair's seeds, and its scramble
+ * seeds from the first pair's mixed with that word through bijections, so each is uniform
+ * (they are not independent of the first pair's, but the independent shuffle already
+ * decorrelates the two pairs). */
 CLPT_INLINE Uniform4 sampler_uniform4(RngKey key, uint sampler, uint pixel, uint sample, uint dimension) {
   const bool sobol = sampler == CLPT_SAMPLER_SOBOL;
   const Philox4 bits = philox4x32_10(philox4(pixel, sobol ? 0u : sample, dimension, sobol ? 1u : 0u),
