@@ -1,6 +1,6 @@
 /* camera.cl: the book's pinhole camera and the sub-pixel samplers.
  *
- * Reads GpuRenderParams (camera, image size, sampler). Produces a unit direction from the
+ * Reads GpuRenderParams (camera, image size, sampler; the random numbers come from sampler.cl). Produces a unit direction from the
  * pinhole, which sits at the origin of the camera-relative device frame. Image row 0 is the
  * top of the picture; the sensor's "up" axis counts rows from the bottom, as in the book. */
 #ifndef CLPT_CAMERA_CL
@@ -9,21 +9,27 @@
 #include "types.h"
 #include "maths.cl"
 #include "rng.cl"
+#include "sampler.cl"
 
 /* Position inside the pixel, in [0,1)^2, of sample `sample` of pixel `pixel`.
- * Both samplers use 4x4 strata. Grid: the stratum centres, in order (the book's sampling).
- * Jitter: uniform inside the stratum; within each group of 16 samples the strata are visited in
- * an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every single
- * sample is uniform over the pixel and any sample count is unbiased. */
+ * Grid: the centres of 4x4 strata, in order (the book's sampling).
+ * Jitter: uniform inside one of 4x4 strata; within each group of 16 samples the strata are visited
+ * in an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every
+ * single sample is uniform over the pixel and any sample count is unbiased.
+ * Sobol: the first pair of sampler dimension 0 as it is (sampler.cl): every 2^k samples are
+ * stratified in the pixel's elementary intervals of area 2^-k. */
 CLPT_INLINE Float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
   const uint k = sample & 15u;
   const Philox4 shuffle = philox4x32_10(philox4(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
-  const Uniform4 u = rng_uniform4(key, pixel, sample, 0u);
+  const Uniform4 u = sampler_uniform4(key, sampler, pixel, sample, 0u);
   const bool grid = sampler == CLPT_SAMPLER_GRID;
+  const bool sobol = sampler == CLPT_SAMPLER_SOBOL;
   const uint stratum = grid ? k : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
   const real jx = grid ? 0.5f : u.u0;
   const real jy = grid ? 0.5f : u.u1;
-  return f2(((real)(stratum & 3u) + jx) * 0.25f, ((real)(stratum >> 2) + jy) * 0.25f);
+  const real sx = ((real)(stratum & 3u) + jx) * 0.25f;
+  const real sy = ((real)(stratum >> 2) + jy) * 0.25f;
+  return f2(sobol ? (real)u.u0 : sx, sobol ? (real)u.u1 : sy);
 }
 
 /* Unit direction of the camera ray through image position (col + sx, row + sy). */

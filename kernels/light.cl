@@ -15,8 +15,8 @@
 #include "rng.cl"
 #include "intersect.cl"
 
-/* RNG dimension of the light sample taken at bounce b: CLPT_DIM_LIGHT + b (rng.cl numbers the
- * camera 0 and scattering 1 + b). */
+/* Sampler dimension of the light sample taken at bounce b: CLPT_DIM_LIGHT + b (sampler.cl and
+ * rng.cl number the camera 0 and scattering 1 + b). */
 #define CLPT_DIM_LIGHT 0x40000000u
 
 typedef struct LightSample {

@@ -29,6 +29,7 @@
 #include "maths.cl"
 #include "path_state.h"
 #include "rng.cl"
+#include "sampler.cl"
 #include "camera.cl"
 #include "intersect.cl"
 #include "bsdf.cl"
@@ -148,7 +149,8 @@ CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* sph
   /* With no light, light_sample reads the buffer's placeholder entry and returns pdf 0 (no early
    * return: a branch here would stop PoCL's vectoriser). */
   __global const GpuSphere* sphere = &spheres[index];
-  const Uniform4 u = rng_uniform4(rng_key_of(params), path->pixel, path->sample, CLPT_DIM_LIGHT + path->bounce);
+  const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample,
+                                       CLPT_DIM_LIGHT + path->bounce);
   const LightSample ls = light_sample(lights, params->light_count, spheres, hit_point, u);
   real bsdf_pdf;
   const Vec3 f_cos = material_eval(sphere, path->direction, normal, ls.direction, &bsdf_pdf);
@@ -202,7 +204,7 @@ CLPT_INLINE void path_shade(PathState* path, Hit hit, __global const GpuSphere* 
 #endif
   path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
 
-  const Uniform4 u = rng_uniform4(rng_key_of(params), path->pixel, path->sample, 1u + path->bounce);
+  const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample, 1u + path->bounce);
   Vec3 weight;
   const Vec3 next = material_sample(sphere, path->direction, normal, u, &weight);
 

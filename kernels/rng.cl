@@ -1,9 +1,11 @@
 /* rng.cl: Philox4x32-10 (Salmon et al., "Parallel random numbers: as easy as 1, 2, 3", SC11).
  *
- * Counter-based: a random number is addressed, not carried. Every number a path uses is
- * rng_uniform4(key, pixel, sample, dimension), so the image does not depend on the device, the
- * work-group size, the pass split or the execution form. Dimension 0 is the camera sample,
- * 1 + b the scattering at bounce b, and CLPT_DIM_STRATA the per-16-sample strata shuffle.
+ * Counter-based: a random number is addressed, not carried. Every number a path uses is drawn
+ * through sampler_uniform4(key, sampler, pixel, sample, dimension) (sampler.cl), which evaluates
+ * Philox at a counter made of those, so the image does not depend on the device, the work-group
+ * size, the pass split or the execution form. Dimension 0 is the camera sample, 1 + b the
+ * scattering at bounce b, CLPT_DIM_LIGHT + b the light sample (light.cl), and CLPT_DIM_STRATA the
+ * jitter sampler's per-16-sample strata shuffle.
  * Written on scalar words (no uint4) so that PoCL can vectorise it across work-items. */
 #ifndef CLPT_RNG_CL
 #define CLPT_RNG_CL

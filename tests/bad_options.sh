@@ -37,7 +37,7 @@ expect 2 "--spp" -- render "$scene" --spp many -o out.exr
 expect 2 "--width" -- render "$scene" --width 0 -o out.exr
 expect 2 "--height" -- render "$scene" --height 99999 -o out.exr
 expect 2 "--max-bounces" -- render "$scene" --max-bounces 5000 -o out.exr
-expect 2 "--sampler" -- render "$scene" --sampler sobol -o out.exr
+expect 2 "--sampler" -- render "$scene" --sampler halton -o out.exr
 expect 2 "--time" -- render "$scene" --time -1 -o out.exr
 expect 2 "--spp 10: the grid sampler needs a multiple of 16" -- render "$scene" --sampler grid --spp 10 -o out.exr
 expect 2 "--device 'nosuchdevice': no such device" -- render "$scene" --device nosuchdevice --sampler jitter --spp 1 -o out.exr
@@ -89,6 +89,8 @@ fi
 expect 2 "--resume missing.ckpt: cannot open checkpoint" -- render "$scene" --resume missing.ckpt -o out.exr
 expect 2 "the checkpoint's seed 1 does not match this render's seed 2" \
   -- render "$scene" --width 8 --height 8 --sampler jitter --spp 4 --seed 2 --resume "$inputs/seed1.ckpt" -o out.exr
+expect 2 "the checkpoint's sampler jitter does not match this render's sampler sobol" \
+  -- render "$scene" --width 8 --height 8 --sampler sobol --spp 4 --resume "$inputs/seed1.ckpt" -o out.exr
 
 if [[ $failures -ne 0 ]]; then
   echo "$failures bad-option case(s) failed"

@@ -21,6 +21,7 @@ struct Variant {
   MegakernelLoop loop = MegakernelLoop::Auto;
   std::string estimator = "";  // "": the scene's
   SceneLoops scene_loops = SceneLoops::Auto;
+  Sampler sampler = Sampler::Jitter;
 };
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
@@ -32,6 +33,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     request.megakernel_loop = v.loop;
     request.scene_loops = v.scene_loops;
     if (!v.estimator.empty()) request.scene.settings.estimator = v.estimator;
+    request.scene.settings.sampler = v.sampler;
   });
 }
 
@@ -82,6 +84,19 @@ TEST_P(FormsAgree, RolledSceneLoopsEqualUnrolled) {
       unrolled.scene_loops = SceneLoops::Unrolled;
       expect_same_image(render_variant(GetParam(), rolled), render_variant(GetParam(), unrolled));
     }
+  }
+}
+
+// The Sobol sampler is counter-addressed like jitter: both forms, for both estimators, draw the
+// same numbers for every path.
+TEST_P(FormsAgree, SobolMegakernelEqualsWavefront) {
+  for (const char* estimator : {"book", "nee"}) {
+    SCOPED_TRACE(estimator);
+    Variant mega{ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::Auto, estimator};
+    mega.sampler = Sampler::Sobol;
+    Variant wave = mega;
+    wave.form = ExecutionForm::Wavefront;
+    expect_same_image(render_variant(GetParam(), mega), render_variant(GetParam(), wave));
   }
 }
 

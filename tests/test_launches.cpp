@@ -62,5 +62,22 @@ TEST(Launches, ResumedRenderEqualsStraightRender) {
   }
 }
 
+// A Sobol render resumed at 12 samples (so its passes split differently) gives the image of a
+// straight one: each sample's points depend on its index, not on the pass that traced it.
+TEST(Launches, SobolResumedRenderEqualsStraightRender) {
+  for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+    SCOPED_TRACE(execution_form_name(form));
+    RenderRequest first = small_request(form, Sampler::Sobol, 12);
+    RenderRequest second = small_request(form, Sampler::Sobol, 40);
+    RenderReport r1, r2, r3;
+    second.resume = run_render(first, r1);
+    const Film resumed = run_render(second, r2);
+    const Film straight = run_render(small_request(form, Sampler::Sobol, 40), r3);
+    ASSERT_EQ(resumed.samples_per_pixel(), 40u);
+    EXPECT_EQ(resumed.valid_counts(), straight.valid_counts());
+    expect_same_image(resumed.mean_rgb(), straight.mean_rgb());
+  }
+}
+
 }  // namespace
 }  // namespace clpt::test

@@ -70,6 +70,37 @@ TEST(MultiDeviceIdentical, TwoDevicesGiveTheImageOfOne) {
   }
 }
 
+// The Sobol sampler over two devices: a pass of one sample, then a resumed pass of the next (each
+// render exactly one pass, so only the split among devices and launches can differ).
+TEST(MultiDeviceIdentical, SobolTwoDevicesGiveTheImageOfOne) {
+  require_two_devices();
+  for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+    SCOPED_TRACE(execution_form_name(form));
+    auto two_passes = [&](const std::string& device, std::vector<DeviceShare>* shares) {
+      RenderRequest request = one_pass_request(device, form);
+      request.scene.settings.width = 128;
+      request.scene.settings.height = 96;
+      request.scene.settings.sampler = Sampler::Sobol;
+      request.scene.settings.spp = 1;
+      RenderReport first, second;
+      request.resume = run_render(request, first);
+      request.scene.settings.spp = 2;
+      Film film = run_render(request, second);
+      EXPECT_EQ(first.passes, 1);
+      EXPECT_EQ(second.passes, 1);
+      if (shares) *shares = second.devices;
+      return film;
+    };
+    std::vector<DeviceShare> shares;
+    const Film one = two_passes("0", nullptr);
+    const Film two = two_passes("all", &shares);
+    ASSERT_EQ(shares.size(), 2u);
+    for (const DeviceShare& d : shares) EXPECT_GT(d.paths, 0u) << d.device << " took no range";
+    EXPECT_EQ(two.samples_per_pixel(), 2u);
+    expect_equal_films(one, two);
+  }
+}
+
 TEST(MultiDeviceIdentical, FailedLaunchGoesToTheOtherDevice) {
   require_two_devices();
   RenderReport straight_report, report;

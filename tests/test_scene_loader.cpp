@@ -228,6 +228,18 @@ TEST(SceneString, SettingsAreRead) {
   EXPECT_EQ(scene.settings.sampler, Sampler::Grid);
 }
 
+// Every sampler's name reads back as that sampler, and a near miss is suggested.
+TEST(SceneString, EverySamplerNameIsRead) {
+  for (const std::string& name : sampler_names()) {
+    const Scene scene = load_scene_string("[render]\nsampler = \"" + name + "\"\n" + kMinimalScene, "mem.toml");
+    EXPECT_EQ(sampler_name(scene.settings.sampler), name);
+  }
+  EXPECT_EQ(load_scene_string(std::string("[render]\nsampler = \"sobol\"\n") + kMinimalScene, "mem.toml").settings.sampler,
+            Sampler::Sobol);
+  EXPECT_EQ(string_error(std::string("[render]\nsampler = \"sobl\"\n") + kMinimalScene),
+            "mem.toml:2:11: render.sampler: unknown sampler 'sobl'; did you mean 'sobol'?");
+}
+
 TEST(SceneString, SyntaxErrorNamesThePosition) {
   EXPECT_EQ(
       string_error("[camera\n"),

@@ -17,6 +17,7 @@ struct BenchOptions {
   std::vector<std::string> loops = {"auto"};
   std::vector<std::string> kernels = {"specialised"};
   std::vector<std::string> precisions = {"robust"};
+  std::string sampler = "jitter";
   std::string json, baseline;
   double tolerance = 10;
 };
@@ -29,6 +30,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.generic.clear();
   for (const std::string& k : o.kernels) config.generic.push_back(k == "generic");
   config.scenes = o.scenes;
+  config.sampler = sampler_from_name(o.sampler).value();  // CLI11 checked the name
   config.precisions.clear();
   for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
   if (config.devices.empty()) config.devices = {"best"};
@@ -70,6 +72,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--warmup", config->warmup, "Untimed runs first")->check(CLI::Range(0, 100));
   cmd->add_option("--repeat", config->repeat, "Timed runs")->check(CLI::Range(1, 1000));
   cmd->add_option("--paths-in-flight", config->paths_in_flight, "Wavefront path slots (0: the device's default)");
+  cmd->add_option("--sampler", o->sampler,
+                  "Sampler of every run (default jitter; the rows do not name it, so compare a --baseline "
+                  "taken with the same one)")
+      ->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--json", o->json, "Also write the results as JSON");
   cmd->add_option("--baseline", o->baseline, "Compare with a saved --json file; exit 1 on a regression");
   cmd->add_option("--tolerance", o->tolerance, "Allowed drop of median paths/s against --baseline, percent")

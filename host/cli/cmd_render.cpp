@@ -79,7 +79,7 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
   if (o.width) s.width = *o.width;
   if (o.height) s.height = *o.height;
   if (o.max_bounces) s.max_bounces = *o.max_bounces;
-  if (o.sampler) s.sampler = *o.sampler == "grid" ? Sampler::Grid : Sampler::Jitter;
+  if (o.sampler) s.sampler = sampler_from_name(*o.sampler).value();  // CLI11 checked the name
   if (o.estimator) s.estimator = *o.estimator;
   if (o.rr_from) s.rr_from = *o.rr_from;
   if (o.light_sampling) s.light_sampling = *o.light_sampling;
@@ -268,8 +268,9 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")
       ->check(CLI::Range(0, 1000));
-  cmd->add_option("--sampler", o->sampler, "jitter (stratified) or grid (the book's 4x4 centres)")
-      ->check(CLI::IsMember({"jitter", "grid"}));
+  cmd->add_option("--sampler", o->sampler,
+                  "jitter (stratified), grid (the book's 4x4 centres) or sobol (Owen-scrambled Sobol points)")
+      ->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--precision", o->precision,
                   "fast (float, fast maths), robust (float, IEEE; default) or double (fp64)")
       ->capture_default_str()

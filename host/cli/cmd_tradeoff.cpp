@@ -225,7 +225,7 @@ void apply_overrides(const TradeoffOptions& o, Scene& scene) {
   if (o.height) s.height = *o.height;
   if (o.max_bounces) s.max_bounces = *o.max_bounces;
   if (o.rr_from) s.rr_from = *o.rr_from;
-  if (o.sampler) s.sampler = *o.sampler == "grid" ? Sampler::Grid : Sampler::Jitter;
+  if (o.sampler) s.sampler = sampler_from_name(*o.sampler).value();  // CLI11 checked the name
   s.spp = int64_t(sampler_granularity(scene));  // budget runs are bounded by time, not by this
   check_scene_limits(scene, {o.width || o.height, false, o.max_bounces.has_value()});
 }
@@ -383,8 +383,9 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--rr-from", o->rr_from, "Russian roulette from this bounce on (default: the scene's, none)")
       ->check(CLI::Range(0, 1000));
-  cmd->add_option("--sampler", o->sampler, "jitter or grid (default: the scene's; the reference's, for no bias)")
-      ->check(CLI::IsMember({"jitter", "grid"}));
+  cmd->add_option("--sampler", o->sampler,
+                  "jitter, grid or sobol (default: the scene's; the reference's, for no bias)")
+      ->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's; never the reference's)");
   cmd->add_option("--launch-ms", o->launch_ms,
                   "Megakernel launch size target in ms, as for `clpt render --launch-ms` (0: one launch per pass)")

@@ -3,7 +3,7 @@
 // it too), in the host's byte order (little-endian on every supported host), written atomically:
 //
 //   "CLPTCKPT" (8 bytes), u32 version (1), u32 width, u32 height, u64 spp done, u64 seed,
-//   scene hash (16 hex characters: Scene::file_hash), u32 sampler (0 jitter, 1 grid),
+//   scene hash (16 hex characters: Scene::file_hash), u32 sampler (0 jitter, 1 grid, 2 sobol),
 //   u32 max_bounces, u64 total samples, u64 total segments, u64 dropped samples,
 //   then f64 sums (3 per pixel, RGB), f64 sums of squares (3 per pixel), f64 valid counts (1 per
 //   pixel), pixels row-major with row 0 at the top.

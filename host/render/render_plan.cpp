@@ -59,7 +59,10 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.max_bounces = static_cast<clpt_u32>(s.max_bounces);
   p.seed_lo = static_cast<clpt_u32>(s.seed & 0xffffffffu);
   p.seed_hi = static_cast<clpt_u32>(s.seed >> 32);
-  p.sampler = s.sampler == Sampler::Grid ? CLPT_SAMPLER_GRID : CLPT_SAMPLER_JITTER;
+  static_assert(uint32_t(Sampler::Jitter) == CLPT_SAMPLER_JITTER && uint32_t(Sampler::Grid) == CLPT_SAMPLER_GRID &&
+                    uint32_t(Sampler::Sobol) == CLPT_SAMPLER_SOBOL,
+                "Sampler's values are the kernels' CLPT_SAMPLER_*");
+  p.sampler = static_cast<clpt_u32>(s.sampler);
   p.ray_epsilon = ds.ray_epsilon;
   p.pixel_begin = 0;
   p.pixel_count = p.width * p.height;

@@ -48,8 +48,13 @@ struct Camera {
   double vertical_fov_deg = 36.869897645844021;
 };
 
-enum class Sampler : uint32_t { Jitter = 0, Grid = 1 };
+// Values equal the kernels' CLPT_SAMPLER_* (types.h) and are stored in checkpoints.
+enum class Sampler : uint32_t { Jitter = 0, Grid = 1, Sobol = 2 };
 const char* sampler_name(Sampler sampler);
+// Every sampler's name, in enum order (the scene key's and the command lines' accepted words).
+std::vector<std::string> sampler_names();
+// The sampler called `name`, or nullopt.
+std::optional<Sampler> sampler_from_name(const std::string& name);
 
 // Everything a render needs besides geometry; the file sets defaults, the command line overrides.
 struct RenderSettings {

@@ -48,8 +48,26 @@ const char* sampler_name(Sampler sampler) {
       return "jitter";
     case Sampler::Grid:
       return "grid";
+    case Sampler::Sobol:
+      return "sobol";
   }
   return "unknown";
+}
+
+namespace {
+constexpr Sampler kSamplers[] = {Sampler::Jitter, Sampler::Grid, Sampler::Sobol};
+}  // namespace
+
+std::vector<std::string> sampler_names() {
+  std::vector<std::string> names;
+  for (Sampler s : kSamplers) names.emplace_back(sampler_name(s));
+  return names;
+}
+
+std::optional<Sampler> sampler_from_name(const std::string& name) {
+  for (Sampler s : kSamplers)
+    if (name == sampler_name(s)) return s;
+  return std::nullopt;
 }
 
 namespace {
@@ -59,7 +77,6 @@ using scene_detail::SourceMap;
 
 constexpr MaterialType kMaterialTypes[] = {MaterialType::Lambertian, MaterialType::Phong,
                                            MaterialType::Glass, MaterialType::Emitter};
-constexpr Sampler kSamplers[] = {Sampler::Jitter, Sampler::Grid};
 
 // Levenshtein distance; keys are short, so the O(n m) table is cheap.
 size_t edit_distance(std::string_view a, std::string_view b) {
@@ -300,11 +317,8 @@ void read_image(const TableReader& image, RenderSettings& settings) {
 }
 
 Sampler parse_sampler(const TableReader& render, const std::string& name) {
-  std::vector<std::string> names;
-  for (Sampler s : kSamplers) {
-    if (name == sampler_name(s)) return s;
-    names.emplace_back(sampler_name(s));
-  }
+  if (const auto sampler = sampler_from_name(name)) return *sampler;
+  const std::vector<std::string> names = sampler_names();
   fail(render.position_of(*render.get("sampler")), render.key_path("sampler"),
        unknown_word_message("sampler", name, names, "expected " + quoted_list(names)));
 }

@@ -124,7 +124,7 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
         Scene scene = load_scene_file(file);
         scene.settings.width = c.width;
         scene.settings.height = c.height;
-        scene.settings.sampler = Sampler::Jitter;
+        scene.settings.sampler = c.sampler;
         if (!estimator.empty()) scene.settings.estimator = estimator;
         for (Precision precision : c.precisions) {
           if (precision == Precision::Double && !device->fp64) {

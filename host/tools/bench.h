@@ -9,6 +9,7 @@
 
 #include "kernels/kernel_options.h"
 #include "render/renderer.h"
+#include "scene/scene.h"
 
 namespace clpt {
 
@@ -25,6 +26,7 @@ struct BenchConfig {
   uint32_t spp = 16;                           // samples per pixel of one timed run
   int warmup = 1, repeat = 5;
   uint32_t paths_in_flight = 0;                // wavefront; 0: the device's default
+  Sampler sampler = Sampler::Jitter;           // one for the whole matrix (rows do not name it)
 };
 
 struct Spread {

@@ -3,6 +3,7 @@
 #include "types.h"
 #include "maths.cl"
 #include "rng.cl"
+#include "sampler.cl"
 #include "camera.cl"
 #include "intersect.cl"
 #include "bsdf.cl"
@@ -16,6 +17,17 @@ __kernel void probe_philox(__global const uint4* counters, uint k0, uint k1, __g
   const uint4 c = counters[i];
   const Philox4 r = philox4x32_10(philox4(c.x, c.y, c.z, c.w), k0, k1);
   out[i] = (uint4)(r.x, r.y, r.z, r.w);
+}
+
+/* The sampler's draw for samples sample_begin + i of (pixel, dimension): out[i] = (u0, u1, u2, u3). */
+__kernel void probe_sampler(uint k0, uint k1, uint sampler, uint pixel, uint dimension, uint sample_begin,
+                            __global float4* out) {
+  const uint i = (uint)get_global_id(0);
+  RngKey key;
+  key.k0 = k0;
+  key.k1 = k1;
+  const Uniform4 u = sampler_uniform4(key, sampler, pixel, sample_begin + i, dimension);
+  out[i] = (float4)(u.u0, u.u1, u.u2, u.u3);
 }
 
 /* Closest hit of ray i (origin with the sphere to skip in .w, unit direction) against spheres. */
