@@ -89,8 +89,8 @@ TEST_P(BookImages, MatchGemspt) { compare_with_gemspt(std::get<0>(GetParam()), s
 INSTANTIATE_TEST_SUITE_P(
     ScenesAndEstimators, BookImages,
     ::testing::Combine(::testing::Values("diffuse", "specular", "glass"), ::testing::ValuesIn(kVariants)),
-    [](const ::testing::TestParamInfo<BookImages::ParamType>& info) {
-      return std::get<0>(info.param) + "_" + std::get<1>(info.param).name;
+    [](const ::testing::TestParamInfo<BookImages::ParamType>& test) {
+      return std::get<0>(test.param) + "_" + std::get<1>(test.param).name;
     });
 
 }  // namespace
