@@ -191,15 +191,6 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     o << "  scene loops: " << (features.unroll_scene_loops ? "unrolled" : "rolled") << " (--scene-loops "
       << scene_loops_name(features.scene_loops)
       << (features.scene_loops == SceneLoops::Auto ? ": unrolled on CPUs, rolled on GPUs" : "") << ")\n";
-  o << "  megakernel loop: "
-    << (features.lockstep_group > 0 ? "lockstep, work-groups of " + std::to_string(features.lockstep_group)
-        : features.megakernel_loop == MegakernelLoop::Auto
-            ? (features.precision == Precision::Robust
-                   ? std::string("lockstep on CPUs (work-groups of ") + std::to_string(kDefaultLockstepGroup) +
-                         " unless --local-size), per path on GPUs"
-                   : std::string("per path (the lockstep loop is for the robust preset on CPUs)"))
-            : std::string(megakernel_loop_name(features.megakernel_loop)))
-    << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

@@ -94,7 +94,8 @@ KernelFeatures generic_features(Precision precision = Precision::Robust);
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);
 
-// Human-readable: one line per decision, then the options.
+// Human-readable: one line per decision, then the options. The megakernel loop is the device's
+// (render_plan.h prints it with the plan).
 std::string explain_kernel_options(const KernelFeatures& features);
 
 }  // namespace clpt

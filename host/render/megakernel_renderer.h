@@ -29,8 +29,6 @@ class MegakernelRenderer : public Renderer {
   // One result slot (16 bytes) per sample of a launch, within launch_buffer_budget.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
 
-  size_t work_group_size() const override { return local_size_; }
-  const char* loop_name() const override { return lockstep_group_ ? "lockstep" : "path"; }
 
   // Work-group size of launches over part of the image when the constructor got 0.
   static constexpr size_t kPartialLaunchLocalSize = 64;

@@ -158,8 +158,7 @@ std::string explain_plan(const RenderPlan& plan) {
     o << "  device memory: " << format_bytes(d.memory.total_bytes) << " (largest buffer '" << d.memory.largest_label
       << "', " << format_bytes(d.memory.largest_bytes) << ")\n";
     std::istringstream kernel(explain_kernel_options(d.features));
-    for (std::string line; std::getline(kernel, line);)
-      if (line.find("megakernel loop:") == std::string::npos) o << "  " << line << "\n";
+    for (std::string line; std::getline(kernel, line);) o << "  " << line << "\n";
   }
   return o.str();
 }

@@ -13,9 +13,9 @@ const char* execution_form_name(ExecutionForm form) {
 
 ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
                               const KernelFeatures& features) {
-  build_options_ = kernel_build_options(features);
   const auto start = Clock::now();
-  ProgramHandle program = ctx.build_program(assemble_kernel_source(entry_file), build_options_, entry_file);
+  ProgramHandle program =
+      ctx.build_program(assemble_kernel_source(entry_file), kernel_build_options(features), entry_file);
   build_seconds_ = seconds_since(start);
   return program;
 }

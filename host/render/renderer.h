@@ -36,17 +36,12 @@ class Renderer {
   // Per-kernel device time so far (empty when not measured).
   virtual std::vector<StageTime> stage_times() const { return {}; }
 
-  // The work-group size of its main kernel, 0 when the driver chooses.
-  virtual size_t work_group_size() const { return 0; }
-  // "lockstep" or "path" for the megakernel (megakernel.cl), "" for forms without that choice.
-  virtual const char* loop_name() const { return ""; }
-
   double build_seconds() const { return build_seconds_; }
-  const std::string& build_options() const { return build_options_; }
 
  protected:
   // Builds the program of `entry_file` (e.g. "megakernel.cl") specialised for `features`,
-  // recording its build options and the build time (driver and clpt caches included).
+  // recording the build time (driver and clpt caches included). The options are the plan's
+  // (render_plan.h), which reports them.
   ProgramHandle build(DeviceContext& ctx, const std::string& entry_file, const KernelFeatures& features);
 
   // The scene's sphere and light buffers (a light buffer is never empty: OpenCL has no
@@ -54,7 +49,6 @@ class Renderer {
   static void upload_scene(DeviceContext& ctx, const DeviceScene& scene, Buffer& spheres, Buffer& lights);
 
   double build_seconds_ = 0;
-  std::string build_options_;
 };
 
 }  // namespace clpt

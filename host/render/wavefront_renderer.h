@@ -24,10 +24,7 @@ class WavefrontRenderer : public Renderer {
   // One result slot (16 bytes) per sample of the pass: bounded to launch_buffer_budget()
   // = min(kMaxLaunchBufferBytes, the device's max allocation / 2), but at least one sample.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
-  size_t work_group_size() const override { return local_size_; }
   std::vector<StageTime> stage_times() const override;
-
-  uint32_t paths_in_flight() const { return paths_; }
 
   // GPUs: 16384 paths per compute unit, within [65536, 4M], enough to fill the lanes many times
   // over. CPUs: 32768 per compute unit: each launch has a fixed cost on PoCL, and fewer, larger
