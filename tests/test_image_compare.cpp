@@ -172,7 +172,7 @@ class CompareRenders : public ::testing::Test {
 
   static MeanVarianceImage render(uint64_t seed) {
     const TestRender r = render_for_test(load_book_scene("diffuse"), kWidth, kHeight, 256, seed);
-    return {kWidth, kHeight, r.film.mean_rgb(), r.film.variance_rgb()};
+    return r.film.mean_variance();
   }
   static const MeanVarianceImage& seed1() {
     static const MeanVarianceImage image = render(1);

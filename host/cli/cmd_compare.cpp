@@ -2,11 +2,8 @@
 // channels, runs the tests of tools/image_compare.h, prints the report and optionally writes it
 // as JSON and a false-colour difference PNG. Exit 0 on PASS, 1 on FAIL, 2 on unusable input.
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include "cli/commands.h"
@@ -34,20 +31,6 @@ MeanVarianceImage load_render(const std::string& path, ComparedFile& info) {
   return std::move(file.image);
 }
 
-void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = temporary_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw Error(ExitCode::OutputError, path + ": cannot write output: " + std::strerror(errno));
-    out << text;
-    if (!out.flush()) {
-      std::remove(tmp.c_str());
-      throw Error(ExitCode::OutputError, path + ": cannot write output: write failed");
-    }
-  }
-  commit_temporary(tmp, path);
-}
-
 // Output paths are checked before any work, so a typo costs nothing.
 void check_output_path(const std::string& option, const std::string& path, const char* extension) {
   if (path.empty()) return;
@@ -69,7 +52,7 @@ int run(const CompareCommandOptions& o) {
                                      " but " + o.path_b + " is " + std::to_string(b.width) + "x" +
                                      std::to_string(b.height) + ": compare needs images of the same size");
   const CompareResult result = compare_renders(a, b, o.test);
-  if (!o.json_path.empty()) write_text_atomically(o.json_path, compare_report_json(result, info_a, info_b));
+  if (!o.json_path.empty()) write_file_atomically(o.json_path, compare_report_json(result, info_a, info_b), "--json");
   if (!o.diff_png_path.empty())
     write_rgb8_image(o.diff_png_path, a.width, a.height, z_to_colour_ramp(pixel_average_z(a, b)));
   std::fputs(format_compare_report(result, info_a, info_b).c_str(), stdout);

@@ -212,7 +212,7 @@ TradeoffRun render_run(const Scene& scene, const Combination& c, double budget_s
   run.paths = report.paths;
   run.dropped = report.dropped;
   if (film.samples_per_pixel() > 0)
-    run.error = split_error({film.width(), film.height(), film.mean_rgb(), film.variance_rgb()}, reference);
+    run.error = split_error(film.mean_variance(), reference);
   return run;
 }
 

@@ -42,6 +42,8 @@ class Film {
   // Variance of the pixel mean per channel: s^2 / n with s^2 the unbiased sample variance.
   // Pixels with fewer than two valid samples get 0.
   std::vector<float> variance_rgb() const;
+  // Both, as the statistics read a render (tools/image_compare.h, tools/tradeoff.h).
+  MeanVarianceImage mean_variance() const { return {width_, height_, mean_rgb(), variance_rgb()}; }
 
   // Samples per pixel taken so far (the same for every pixel after whole passes).
   uint64_t samples_per_pixel() const { return samples_per_pixel_; }

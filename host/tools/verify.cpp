@@ -60,10 +60,6 @@ MeanVarianceImage load_reference(const std::string& path) {
   return std::move(file.image);
 }
 
-MeanVarianceImage from_film(const Film& film) {
-  return {film.width(), film.height(), film.mean_rgb(), film.variance_rgb()};
-}
-
 // Variance of the image mean per channel: sum of the pixels' variances of the mean / pixels^2.
 std::array<double, 3> image_mean_variance(const MeanVarianceImage& img) {
   std::array<double, 3> v = {0, 0, 0};
@@ -189,7 +185,7 @@ Rendered render(const Scene& scene, ExecutionForm form, Precision precision, con
   request.faults = faults;
   RenderReport report;
   const Film film = run_render(request, report);
-  return {from_film(film), double(report.paths) / std::max(1e-9, report.render_seconds)};
+  return {film.mean_variance(), double(report.paths) / std::max(1e-9, report.render_seconds)};
 }
 
 // A rate for the table: "6.54 M", "12.3 k" or "196" (a simulator runs a few hundred paths/s).
