@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cl/cl_device.h"
+#include "render_test_util.h"
 #include "util/error.h"
 
 namespace clpt::test {
@@ -117,7 +118,7 @@ SameSeedAgreement same_seed_agreement(const std::vector<float>& a, const std::ve
   size_t close = 0;
   double sum_a[3] = {0, 0, 0}, sum_b[3] = {0, 0, 0};
   for (size_t i = 0; i < a.size(); ++i) {
-    close += std::abs(a[i] - b[i]) <= 1e-4 * std::max({std::abs(a[i]), std::abs(b[i]), 1e-6f});
+    close += same_value(a[i], b[i]);
     sum_a[i % 3] += a[i];
     sum_b[i % 3] += b[i];
   }

@@ -74,6 +74,10 @@ std::vector<float> render_book_variant(const std::string& scene_name, uint64_t s
   return run_render(request, report).mean_rgb();
 }
 
+bool same_value(float a, float b) {
+  return std::abs(a - b) <= 1e-4 * std::max({std::abs(a), std::abs(b), 1e-6f});
+}
+
 void expect_same_image(const std::vector<float>& a, const std::vector<float>& b) {
   ASSERT_EQ(a.size(), b.size());
   double sum_a = 0, sum_b = 0;
@@ -81,7 +85,7 @@ void expect_same_image(const std::vector<float>& a, const std::vector<float>& b)
   for (size_t i = 0; i < a.size(); ++i) {
     sum_a += a[i];
     sum_b += b[i];
-    close += std::abs(a[i] - b[i]) <= 1e-4 * std::max({std::abs(a[i]), std::abs(b[i]), 1e-6f});
+    close += same_value(a[i], b[i]);
   }
   EXPECT_NEAR(sum_a, sum_b, 1e-4 * sum_a);
   EXPECT_GE(double(close), 0.99 * double(a.size())) << close << " of " << a.size();

@@ -52,4 +52,8 @@ std::vector<float> render_book_variant(const std::string& scene_name, uint64_t s
 // rare path elsewhere).
 void expect_same_image(const std::vector<float>& a, const std::vector<float>& b);
 
+// One value of two same-seed renders agrees: within 1e-4 relative (of the larger, or of 1e-6
+// near zero). What expect_same_image and the Oclgrind tier's agreement count.
+bool same_value(float a, float b);
+
 }  // namespace clpt::test
