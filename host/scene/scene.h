@@ -39,6 +39,21 @@ struct Sphere {
   SourcePosition where;  // position of the [[sphere]] table
 };
 
+// A triangle mesh in world space, as the loader leaves it: positions after the [[mesh]] table's
+// scale, rotation and translation; triangles as indices into positions, degenerate ones already
+// dropped. Normals, when the mesh file has them, are one unit vector per position, in world space
+// (shading normals); otherwise empty and the geometric normal shades.
+struct TriangleMesh {
+  std::string name;       // from the file, or "mesh[i]"
+  std::string file;       // the mesh file as the scene names it; "" for a mesh written inline
+  std::string file_hash;  // FNV-1a 64 of the mesh file's bytes, hex; "" inline
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;  // empty, or positions.size() entries
+  std::vector<std::array<uint32_t, 3>> triangles;
+  Material material;
+  SourcePosition where;  // position of the [[mesh]] table
+};
+
 // Pinhole camera. The book's camera: a sensor sensor_height units high placed sensor_distance in
 // front of the pinhole, i.e. vertical_fov = 2 atan(sensor_height / 2 / sensor_distance).
 struct Camera {
@@ -75,6 +90,7 @@ struct Scene {
   Camera camera;
   RenderSettings settings;
   std::vector<Sphere> spheres;
+  std::vector<TriangleMesh> meshes;  // none until the loader reads [[mesh]] tables
 };
 
 }  // namespace clpt
