@@ -52,11 +52,8 @@ expect 2 "--scene-loops" -- render "$scene" --scene-loops lockstep -o out.exr
 expect 2 "--rr-from" -- render "$scene" --rr-from -1 -o out.exr
 expect 2 "--intersection" -- render "$scene" --intersection exact -o out.exr
 expect 2 "--light-sampling" -- render "$scene" --light-sampling cone -o out.exr
-# The OpenImageIO module missing: exit 5 before any rendering, naming the output and the path
-# tried, and nothing written (a render to .pfm needs no module).
-CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so expect 5 \
-  "-o out.exr: cannot load the image I/O module libclpt_image_io.so (OpenImageIO)" \
-  -- render "$scene" --spp 16 --width 8 --height 8 -o out.exr
+# The OpenImageIO module missing: a command that reads images stops, naming the path tried (a
+# render needs no module: compare_cli.sh renders with it hidden).
 CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so expect 2 "/nonexistent/libclpt_image_io.so: no such file" \
   -- compare missing_a.exr missing_b.exr
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `clpt compare` end to end: two seeds of a small render pass, the same seed twice passes
-# --same-seed, --json writes valid JSON, and an EXR without variance channels is a usage error
-# (exit 2) whose message names the file and the variance channel.
+# --same-seed (one of the two written with OpenImageIO's module hidden), --json writes valid JSON,
+# and an EXR without variance channels is a usage error (exit 2) whose message names the file and
+# the variance channel.
 #   compare_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -15,7 +16,10 @@ render() {  # render SEED OUTPUT
 }
 render 1 a.exr
 render 2 b.exr
-render 1 a_again.exr
+# A render writes its EXR and PNG without OpenImageIO's module (host/io/exr_writer.h): with the
+# module hidden it still succeeds, and OpenImageIO reads both files back below.
+CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so render 1 a_again.exr
+iinfo a_again.png >/dev/null || fail "OpenImageIO cannot read the PNG clpt wrote"
 
 # expect CODE ARGS...: runs `clpt compare ARGS`, keeps stdout in out.txt and stderr in err.txt.
 expect() {

@@ -206,9 +206,6 @@ void check_checkpoint_path(const std::string& path) {
 
 int run(const RenderOptions& o) {
   const std::string out = output_path(o);
-#ifdef CLPT_WITH_OIIO
-  if (std::filesystem::path(out).extension() == ".exr") check_image_io_module("-o " + out);
-#endif
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (!o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
   Scene scene = load_scene_file(o.scene_path);
@@ -242,10 +239,6 @@ int run(const RenderOptions& o) {
   prepare_resume_and_checkpoints(o, scene, request);
   install_interrupt_handlers();
   request.interrupt = &interrupt_flag();
-#ifdef CLPT_WITH_OIIO
-  // OpenImageIO takes 0.4 s to load (io/image_codec.h): it loads while the render goes on.
-  if (std::filesystem::path(out).extension() == ".exr") request.after_first_pass = preload_image_io;
-#endif
   const Film film = run_render(request, report);
   if (!o.quiet) print_summary(scene, report);
   return finish_outputs(o, out, film, scene, report);

@@ -4,8 +4,8 @@
 // Why a module: Debian's OpenImageIO links about 260 shared libraries (video, DICOM, OpenVDB,
 // camera raw, ...), all bound at load time; loading them took 0.39 s of every process on the
 // project's 2-core VM, `clpt --help` included. Linked at run time, OIIO costs nothing to commands
-// that read and write no image, and `clpt render` loads it on a background thread while the first
-// pass renders (preload_image_io, image_io.h).
+// that read no image, and `clpt render`, whose EXR and PNG clpt writes itself (exr_writer.h,
+// png_writer.h), never loads it.
 //
 // Contract: both sides are built from this tree by the same compiler (the module is a build
 // product beside the clpt executable), so C++ types cross the boundary; errors come back as text,

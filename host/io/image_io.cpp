@@ -1,10 +1,13 @@
 #include "io/image_io.h"
 
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
 #include "io/render_file.h"
 
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -84,12 +87,22 @@ const ImageCodec& codec(ExitCode code, const std::string& what) {
   return *r.codec;
 }
 
+// clpt's own writer for the format `path`'s extension names (EXR, PNG), or null: OpenImageIO's.
+using OwnWriter = std::string (*)(const std::string& path, const ImageToWrite& image);
+OwnWriter own_writer_for(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".exr") return write_exr;
+  if (ext == ".png") return write_png;
+  return nullptr;
+}
+
 // Writes `image` to the temporary name for `path` and returns that name; the caller renames it
 // into place once every output has been written.
 std::string write_temporary(const std::string& path, const ImageToWrite& image) {
-  const ImageCodec& c = codec(ExitCode::OutputError, path);
   const std::string tmp = temporary_path_for(path);
-  const std::string error = c.write(tmp, path, image);
+  const OwnWriter own = own_writer_for(path);
+  const std::string error = own ? own(tmp, image) : codec(ExitCode::OutputError, path).write(tmp, path, image);
   if (!error.empty()) {
     std::remove(tmp.c_str());
     throw Error(ExitCode::OutputError, path + ": cannot write output: " + error);
@@ -118,17 +131,6 @@ std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
 }
 
 }  // namespace
-
-void preload_image_io() { start_loading(); }
-
-void check_image_io_module(const std::string& what) {
-  std::string tried;
-  for (const std::string& path : module_candidates()) {
-    if (std::filesystem::exists(path)) return;
-    tried += "\n  " + path + ": no such file";
-  }
-  throw Error(ExitCode::OutputError, what + ": " + cannot_load(tried));
-}
 
 int LoadedImage::channel(const std::string& name) const {
   const auto it = std::find(channels.begin(), channels.end(), name);

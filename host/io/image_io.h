@@ -1,6 +1,8 @@
-// Every image read and write of the full build goes through OpenImageIO, here: this side
-// prepares pixels, names and atomic renames; the OIIO calls themselves live in a module loaded
-// at run time (image_codec.h says why).
+// Every image read and write of the full build, here: this side prepares pixels, names and atomic
+// renames. EXR and PNG are written by clpt's own writers (exr_writer.h through OpenEXR,
+// png_writer.h through libpng), so a render never loads OpenImageIO; every read, and a write in
+// any other format, goes through OpenImageIO, whose calls live in a module loaded at run time
+// (image_codec.h says why).
 //
 // A render writes OUT.exr (linear float R, G, B and the variance of each pixel mean in
 // variance.R, variance.G, variance.B, plus clpt:* metadata) and OUT.png beside it (8-bit
@@ -17,21 +19,13 @@
 
 namespace clpt {
 
-// Starts loading the OpenImageIO module on a background thread and returns at once, so that a
-// command which will write images later (a render) does not wait for it then. Idempotent.
-void preload_image_io();
-
-// Throws Error(OutputError), naming `what` (the output) and the paths tried, when the OpenImageIO
-// module is nowhere to be found; cheap (no loading). A render calls it before any work.
-void check_image_io_module(const std::string& what);
-
 // Writes the EXR at `exr_path` (channels and metadata as io/render_file.h lays them down; call
 // write_render_file there) and the PNG preview with the same stem (the two at once). Returns the
 // PNG path. Throws Error(OutputError) naming the file.
 std::string write_render_outputs(const std::string& exr_path, const Film& film,
                                  const ImageMetadata& metadata);
 
-// Writes an 8-bit RGB PNG (or any format the extension names), atomically.
+// Writes an 8-bit RGB PNG (or any format the extension names, through OpenImageIO), atomically.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);
 
 // Loads the OpenImageIO module for reading `path`, or throws Error(Usage) naming the path and the

@@ -65,7 +65,6 @@ PassLoopResult run_passes(DevicePool& pool, const GpuRenderParams& params, Film&
     pool.run_pass(pass, film);
     rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
     ++result.passes;
-    if (result.passes == 1 && options.after_first_pass) options.after_first_pass();
     progress.update(result.passes, film.samples_per_pixel(), options.target_spp,
                     double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0)),
                     seconds_since(t0), options.time_limit_s);

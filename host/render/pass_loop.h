@@ -22,8 +22,6 @@ struct PassLoopOptions {
   const std::atomic<bool>* interrupt = nullptr;
   // Called between passes, at most every checkpoint_every_s seconds (none when empty).
   std::function<void(const Film&)> checkpoint;
-  // Called once, after the first pass (none when empty); see RenderRequest::after_first_pass.
-  std::function<void()> after_first_pass;
   double checkpoint_every_s = 60;
   bool show_progress = false;
 };

@@ -40,11 +40,6 @@ struct RenderRequest {
   const std::atomic<bool>* interrupt = nullptr;
   // A checkpoint to continue from (render/checkpoint.h): sampling resumes at its spp.
   std::optional<Film> resume;
-  // Called once, after the first pass (none when empty): host work to overlap with the rest of
-  // the render, such as loading the image writer. Not before: OpenCL drivers load their kernels
-  // (PoCL: a shared object per kernel) at the first launch, and a dlopen on another thread would
-  // hold the dynamic loader's lock against them.
-  std::function<void()> after_first_pass;
   // Called between passes at most every checkpoint_every_s seconds (none when empty).
   std::function<void(const Film&)> checkpoint;
   double checkpoint_every_s = 60;

@@ -16,7 +16,6 @@ PassLoopOptions pass_loop_options(const RenderPlan& plan, const RenderRequest& r
   o.granularity = plan.sampler_granularity;
   o.interrupt = request.interrupt;
   o.checkpoint = request.checkpoint;
-  o.after_first_pass = request.after_first_pass;
   o.checkpoint_every_s = request.checkpoint_every_s;
   o.show_progress = request.show_progress;
   return o;
