@@ -11,7 +11,7 @@
  * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free.
  *
  * Precision presets (host/kernels/kernel_options.cpp decides; README "Precision presets"):
- *   CLPT_PRECISION 0 fast:   real = float, built with -cl-fast-relaxed-math; native_* sin, cos
+ *   CLPT_PRECISION 0 fast:   real = float, built with -cl-unsafe-math-optimizations; native_* sin, cos
  *                            and powr; the cheaper surface-point intersection (intersect.cl)
  *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
  *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow

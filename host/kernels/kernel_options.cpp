@@ -63,16 +63,16 @@ std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name) {
   return std::nullopt;
 }
 
-// CPUs get the lockstep loop with the robust preset: PoCL vectorises only loop-free code across
-// work-items, so the per-path loop runs scalar (the lockstep one measured 4.9-6.4x faster on the
-// three book scenes with either estimator, README "Speed"). The fast and double presets are not
-// vectorised in either loop (fast maths makes fmin/fmax pairs and native-function calls, double
-// calls the fp64 library), and there the per-path loop measured 7-21% faster in 9 of 12 cases
-// (at most 6% slower in the other 3). GPUs mask diverged lanes in hardware and need no barrier
-// per segment; no GPU has measured either loop yet.
+// CPUs get the lockstep loop with the float presets: PoCL vectorises only loop-free code across
+// work-items, so the per-path loop runs scalar (the lockstep one measured 4.9-6.4x faster with
+// robust on the three book scenes with either estimator, and 5x with fast, docs/performance.md).
+// The double preset is not vectorised in either loop (SLP pairs of doubles in the camera code
+// and the fp64 library's calls stop the work-item loop vectoriser), and there the per-path loop
+// measured faster. GPUs mask diverged lanes in hardware and need no barrier per segment; no GPU
+// has measured either loop yet.
 uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size) {
   const bool lockstep = loop == MegakernelLoop::Lockstep ||
-                        (loop == MegakernelLoop::Auto && device.is_cpu && precision == Precision::Robust);
+                        (loop == MegakernelLoop::Auto && device.is_cpu && precision != Precision::Double);
   if (!lockstep) return 0;
   return static_cast<uint32_t>(local_size ? local_size : kDefaultLockstepGroup);
 }
@@ -131,9 +131,12 @@ std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
   o << "-cl-std=CL1.2";
-  // Fast maths lets the compiler reassociate and assume no NaN/Inf; the film's NaN/Inf guard is a
-  // bit test (maths.cl), which those assumptions cannot remove.
-  if (features.precision == Precision::Fast) o << " -cl-fast-relaxed-math";
+  // Fast maths lets the compiler reassociate, contract and drop signed zeros. Not
+  // -cl-fast-relaxed-math: its -cl-finite-math-only stops PoCL's work-item loop vectoriser (LLVM
+  // 15: "instruction return type cannot be vectorized"), which made the fast lockstep megakernel
+  // 4x slower than robust (docs/performance.md, "Presets"). The film's NaN/Inf guard is a bit test
+  // (maths.cl) either way.
+  if (features.precision == Precision::Fast) o << " -cl-unsafe-math-optimizations";
   o << " -DCLPT_PRECISION=" << static_cast<int>(features.precision);
   o << " -DCLPT_INTERSECT=" << static_cast<int>(features.intersection.value_or(default_intersection(features.precision)));
   o << " -DCLPT_HAS_PHONG=" << (features.phong ? 1 : 0);
@@ -154,7 +157,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   std::ostringstream o;
   o << "kernel specialisation:\n";
   o << "  precision: " << precision_name(features.precision)
-    << (features.precision == Precision::Fast     ? " (float, -cl-fast-relaxed-math, native maths)"
+    << (features.precision == Precision::Fast     ? " (float, -cl-unsafe-math-optimizations, native maths)"
         : features.precision == Precision::Double ? " (fp64 arithmetic, cl_khr_fp64)"
                                                   : " (float, IEEE maths, the accurate intersection)")
     << "\n";

@@ -12,7 +12,7 @@
 namespace clpt {
 
 // Arithmetic of the kernels (`--precision`); README "Precision presets".
-//   fast:   float, -cl-fast-relaxed-math, native maths, the centre-based intersection
+//   fast:   float, -cl-unsafe-math-optimizations, native maths, the centre-based intersection
 //   robust: float, IEEE maths, the accurate intersection of intersect.cl (default)
 //   double: fp64 arithmetic throughout the path (needs cl_khr_fp64)
 enum class Precision { Fast, Robust, Double };
@@ -38,7 +38,7 @@ const char* estimator_name(Estimator estimator);
 std::optional<Estimator> parse_estimator(const std::string& name);
 
 // The megakernel's loop (kernels/megakernel.cl; `--megakernel-loop`).
-//   auto:     lockstep on CPU devices with the robust preset, per path otherwise
+//   auto:     lockstep on CPU devices with the fast and robust presets, per path otherwise
 //   path:     each work-item loops over its own path's segments
 //   lockstep: a work-group's paths advance one segment at a time, together (PoCL vectorises it)
 enum class MegakernelLoop { Auto, PerPath, Lockstep };

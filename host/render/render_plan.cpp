@@ -138,7 +138,7 @@ std::string explain_plan(const RenderPlan& plan) {
                 : std::string("per path"))
         << " (--megakernel-loop " << megakernel_loop_name(d.features.megakernel_loop)
         << (d.features.megakernel_loop == MegakernelLoop::Auto
-                ? std::string(": lockstep on CPUs with the robust preset, per path otherwise; this is a ") +
+                ? std::string(": lockstep on CPUs with the float presets, per path otherwise; this is a ") +
                       (d.device.is_cpu ? "CPU" : "GPU")
                 : std::string())
         << ")\n";
