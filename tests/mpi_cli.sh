@@ -7,9 +7,10 @@
 #  * 1 process, mpirun -n 2 and -n 3: the same film, bit for bit; jitter and sobol likewise (-n 2);
 #  * a plain process maps no MPI library; under mpirun the ranks load libclpt_mpi.so;
 #  * the summary names every rank with its host, devices, share, paths/s and busy time;
-#  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share;
+#  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share (and the image is one
+#    process's, same seed, up to the rounding of other pass boundaries);
 #  * a checkpoint of 3 ranks resumed by 2 equals an uninterrupted render;
-#  * SIGINT to mpirun: exit 130, the finished passes written;
+#  * SIGINT to mpirun: the finished passes written, rank 0 exits 130;
 #  * a rank whose device fails: its part goes to the other rank, the same film;
 #  * a rank that dies: the job fails, no output, and its last checkpoint resumes in one process;
 #  * ranks rendering different scenes or seeds: exit 2 naming the rank, nothing written.
@@ -70,8 +71,10 @@ share() { sed -n "s/^  rank $1 on .*: *\([0-9.]*\)% of the samples.*/\1/p" slow.
 s0=$(share 0) s1=$(share 1)
 python3 -c "import sys; sys.exit(0 if float('$s0') < 40 and float('$s1') > 60 else 1)" 2>/dev/null ||
   { fail "slowed rank 0 took $s0% and rank 1 $s1% (expected < 40 and > 60)"; cat slow.out; }
-"$clpt" render "$scene" "${small[@]}" --sampler grid --spp 64 -q -o slow1.pfm --checkpoint slow1.ckpt
-same_film slow1.ckpt slow.ckpt "ranks of different speed"
+# 64 spp are 16 + 48 or 16 + 16 + 32 depending on the measured rate, so the film is that of one
+# process up to float rounding of the pass sums, not bit for bit.
+"$clpt" render "$scene" "${small[@]}" --sampler grid --spp 64 -q -o slow1.pfm
+"$clpt" compare --same-seed slow1.pfm slow.pfm >slow_compare.out || { fail "ranks of different speed: not one process's image"; cat slow_compare.out; }
 echo "ok: slowed rank took $s0%, the other $s1%"
 
 # 4. A checkpoint of 3 ranks, resumed by 2: the uninterrupted film.
@@ -82,8 +85,13 @@ echo "ok: slowed rank took $s0%, the other $s1%"
 same_film one.ckpt resumed.ckpt "3 ranks' checkpoint resumed by 2"
 echo "ok: checkpoint of 3 ranks resumed by 2"
 
-# 5. SIGINT to mpirun (Open MPI passes it on to the ranks): the finished passes are written.
-"${mpirun[@]}" -n 2 "$clpt" render "$scene" "${small[@]}" --sampler jitter --spp 100000 --progress \
+# 5. SIGINT to mpirun: Open MPI sends SIGTERM to every rank (and SIGKILL after a grace period);
+#    rank 0 finishes the pass, writes the finished passes and exits 130. mpirun's own status after
+#    it was signalled is its own (1 on Open MPI 4.1.4), so the test accepts 1 or 130 and checks
+#    what rank 0 wrote and said.
+# The grace period before SIGKILL (1 s by default) is raised so that a loaded machine still
+# finishes the pass and the writes.
+"${mpirun[@]}" --mca odls_base_sigkill_timeout 20 -n 2 "$clpt" render "$scene" "${small[@]}" --sampler jitter --spp 100000 --progress \
   -o int.pfm --checkpoint int.ckpt >int.out 2>int.err &
 pid=$!
 waited=0
@@ -95,7 +103,7 @@ done
 kill -INT $pid
 wait $pid
 status=$?
-[[ $status -eq 130 ]] || { fail "interrupted mpirun exited $status, expected 130"; cat int.out int.err; }
+[[ $status -eq 130 || $status -eq 1 ]] || { fail "interrupted mpirun exited $status, expected 130 or 1"; cat int.out int.err; }
 [[ -s int.pfm && -s int.ckpt ]] || fail "interrupted job: no image or checkpoint"
 grep -q "interrupted: wrote the [1-9][0-9]* finished samples per pixel" int.err || { fail "no interrupt note"; cat int.err; }
 [[ -z $(find . -name '*clpt-tmp*') ]] || fail "temporary files left: $(find . -name '*clpt-tmp*')"
@@ -131,7 +139,8 @@ status=$?
 grep -q "rank 1 of 2 (host .*) does not render what rank 0 .* renders: rank 1 has 'scene file hash" bad.out ||
   { fail "different scenes: the message"; cat bad.out; }
 [[ $(grep -c "does not render" bad.out) -eq 1 ]] || fail "different scenes: the message is not printed once"
-"${mpirun[@]}" -n 1 "$clpt" "${grid[@]}" -o bad.pfm : -n 1 "$clpt" "${grid[@]}" --seed 6 -o bad.pfm >bad.out 2>&1
+"${mpirun[@]}" -n 1 "$clpt" "${grid[@]}" -o bad.pfm : -n 1 "$clpt" render "$scene" --width 64 --height 48 --seed 6 \
+  --sampler grid --spp 32 -o bad.pfm >bad.out 2>&1
 [[ $? -eq 2 ]] && grep -q "rank 1 has 'seed: 6', rank 0 'seed: 5'" bad.out || { fail "different seeds"; cat bad.out; }
 [[ -e bad.pfm ]] && fail "disagreeing ranks wrote an image"
 echo "ok: disagreeing ranks stop the job"
