@@ -9,6 +9,7 @@
 #  * the summary names every rank with its host, devices, share, paths/s and busy time;
 #  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share (and the image is one
 #    process's, same seed, up to the rounding of other pass boundaries);
+#  * --time over 2 ranks ends with whole passes written;
 #  * a checkpoint of 3 ranks resumed by 2 equals an uninterrupted render;
 #  * SIGINT to mpirun: the finished passes written, rank 0 exits 130;
 #  * a rank whose device fails: its part goes to the other rank, the same film;
@@ -76,6 +77,12 @@ python3 -c "import sys; sys.exit(0 if float('$s0') < 40 and float('$s1') > 60 el
 "$clpt" render "$scene" "${small[@]}" --sampler grid --spp 64 -q -o slow1.pfm
 "$clpt" compare --same-seed slow1.pfm slow.pfm >slow_compare.out || { fail "ranks of different speed: not one process's image"; cat slow_compare.out; }
 echo "ok: slowed rank took $s0%, the other $s1%"
+
+# 3b. --time over 2 ranks: rank 0's clock stops the job at a pass boundary; whole passes written.
+"${mpirun[@]}" -n 2 "$clpt" render "$scene" "${small[@]}" --sampler jitter --time 1 -o timed.pfm >timed.out 2>&1 ||
+  { fail "--time 1 over 2 ranks: exit $?"; cat timed.out; }
+grep -q "rendered .*: 64x48, [1-9][0-9]* spp, .* on 2 MPI ranks" timed.out && [[ -s timed.pfm ]] ||
+  { fail "--time 1 over 2 ranks: no image of whole passes"; cat timed.out; }
 
 # 4. A checkpoint of 3 ranks, resumed by 2: the uninterrupted film.
 "${mpirun[@]}" -n 3 "$clpt" render "$scene" "${small[@]}" --sampler grid --spp 16 -q -o half.pfm --checkpoint three.ckpt ||

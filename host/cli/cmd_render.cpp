@@ -151,9 +151,11 @@ void print_rank_shares(const RenderReport& r) {
 
 void print_summary(const Scene& scene, const RenderReport& r) {
   const double seconds = std::max(1e-9, r.render_seconds);
-  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many.
-  const std::string launches =
-      r.form == ExecutionForm::Megakernel ? " in " + std::to_string(r.launches) + " launches" : "";
+  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many (this
+  // process's only, so not for an MPI job).
+  const std::string launches = r.form == ExecutionForm::Megakernel && r.ranks.size() <= 1
+                                   ? " in " + std::to_string(r.launches) + " launches"
+                                   : "";
   const std::string where = r.ranks.size() > 1 ? std::to_string(r.ranks.size()) + " MPI ranks" : r.device;
   std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s, %s, estimator %s, on %s\n", scene.file.c_str(),
               scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
