@@ -13,6 +13,7 @@
 #  * a checkpoint of 3 ranks resumed by 2 equals an uninterrupted render;
 #  * SIGINT to mpirun: the finished passes written, rank 0 exits 130;
 #  * a rank whose device fails: its part goes to the other rank, the same film;
+#  * every rank's device failing: exit 4 naming each rank, nothing written;
 #  * a rank that dies: the job fails, no output, and its last checkpoint resumes in one process;
 #  * ranks rendering different scenes or seeds: exit 2 naming the rank, nothing written.
 #   mpi_cli.sh CLPT SOURCE_DIR WORK_DIR
@@ -124,6 +125,14 @@ grep -q "rank 1 of 2 (host .*) failed: .*CL_OUT_OF_RESOURCES.*; its work goes to
   { fail "the failed rank is not named"; cat dev_fault.out; }
 same_film one.ckpt dev_fault.ckpt "a rank's device failing"
 echo "ok: a failed rank's work goes to the other"
+
+# 6b. Every rank's device failing: exit 4 on every rank, each rank named once, nothing written.
+"${mpirun[@]}" -n 2 env CLPT_INJECT_FAULT=launch:0:1 "$clpt" "${grid[@]}" -o all_fail.pfm >all_fail.out 2>&1
+status=$?
+[[ $status -eq 4 ]] || { fail "every rank failing: exit $status, expected 4"; cat all_fail.out; }
+grep -q "every rank failed:" all_fail.out && [[ $(grep -c "^  rank [01] of 2 (host .*): clEnqueueNDRangeKernel failed" all_fail.out) -eq 2 ]] ||
+  { fail "every rank failing: not both ranks' errors, once"; cat all_fail.out; }
+[[ -e all_fail.pfm ]] && fail "every rank failing: an image was written"
 
 # 7. A rank that dies at its second pass: the job ends with an error, no image; the checkpoint of
 #    the first pass resumes in one process and gives the uninterrupted film.
