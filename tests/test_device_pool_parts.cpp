@@ -1,5 +1,6 @@
 // The device-free parts of multi-device renders: --device lists (select_devices on made-up device
-// lists), the pass's pixel queue, the balanced range size, and CLPT_INJECT_FAULT parsing.
+// lists), the pass's pixel queue, the balanced range size, CLPT_INJECT_FAULT parsing, and how a
+// pass's pixels are split over the ranks of an MPI job (render/rank_pass.h).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -8,6 +9,7 @@
 
 #include "cl/cl_device.h"
 #include "render/fault_injection.h"
+#include "render/rank_pass.h"
 #include "render/work_queue.h"
 #include "util/error.h"
 
@@ -229,6 +231,44 @@ TEST(FaultPlan, RejectsMalformedPerturbEntries) {
       EXPECT_NE(std::string(e.what()).find("perturb:DEVICE:R|G|B:FACTOR"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(FaultPlan, ParsesDelayAndExitFaults) {
+  const FaultPlan plan = FaultPlan::parse("delay:1:30,delay:1:5,exit:3");
+  EXPECT_EQ(plan.launch_delay_ms(1), 35u);
+  EXPECT_EQ(plan.launch_delay_ms(0), 0u);
+  EXPECT_TRUE(plan.exits_at_pass(3));
+  EXPECT_FALSE(plan.exits_at_pass(2));
+  EXPECT_FALSE(FaultPlan::parse("delay:0:9").exits_at_pass(1));
+  for (const char* bad : {"delay:0", "delay:x:5", "delay:0:-1", "exit:0", "exit:", "exit:1:2"})
+    EXPECT_THROW(FaultPlan::parse(bad), Error) << bad;
+}
+
+// Parts are consecutive, in rank order, cover the range once, and follow the weights.
+TEST(RankSplit, PartsCoverTheRangeInOrderByWeight) {
+  const std::vector<PixelRange> parts = split_pixels_by_weight({100, 1000}, {1, 3, 0, 1});
+  ASSERT_EQ(parts.size(), 4u);
+  EXPECT_EQ(parts[0].begin, 100u);
+  EXPECT_EQ(parts[0].count, 200u);
+  EXPECT_EQ(parts[1].begin, 300u);
+  EXPECT_EQ(parts[1].count, 600u);
+  EXPECT_EQ(parts[2].count, 0u);  // a failed rank: none
+  EXPECT_EQ(parts[3].begin, 900u);
+  EXPECT_EQ(parts[3].count, 200u);  // the last working part ends the range
+  // Rounding: awkward weights still cover every pixel once.
+  const std::vector<PixelRange> odd = split_pixels_by_weight({0, 7}, {0.3, 0.3, 0.3});
+  uint32_t next = 0;
+  for (const PixelRange& p : odd) {
+    EXPECT_EQ(p.begin, next);
+    next += p.count;
+  }
+  EXPECT_EQ(next, 7u);
+  // The last working rank need not be the last rank.
+  const std::vector<PixelRange> tail = split_pixels_by_weight({0, 10}, {1, 1, 0});
+  EXPECT_EQ(tail[1].begin + tail[1].count, 10u);
+  EXPECT_EQ(tail[2].count, 0u);
+  // No working rank: nothing handed out.
+  for (const PixelRange& p : split_pixels_by_weight({0, 10}, {0, 0})) EXPECT_EQ(p.count, 0u);
 }
 
 TEST(FaultPlan, InjectedFailureReadsLikeTheClWrapper) {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "render/rank_group.h"
 #include "util/atomic_file.h"
 #include "tools/bench.h"
 #include "util/error.h"
@@ -23,6 +24,11 @@ struct BenchOptions {
 };
 
 int run(BenchConfig config, const BenchOptions& o) {
+  // Under a launcher every rank would run the whole matrix at once, competing for the machine.
+  if (const std::string launcher = mpi_launcher_variable(); !launcher.empty())
+    throw Error(ExitCode::Usage, "clpt bench was started by an MPI launcher (" + launcher +
+                                     " is set), but it does not run over MPI ranks; scripts/mpi_scaling.sh "
+                                     "measures how a render scales over 1..K ranks (docs/mpi.md)");
   for (const std::string& f : o.forms)
     config.forms.push_back(f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel);
   config.megakernel_loops.clear();

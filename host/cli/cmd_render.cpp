@@ -12,6 +12,7 @@
 #include "render/checkpoint.h"
 #include "render/film_raw.h"
 #include "render/limits.h"
+#include "render/rank_group.h"
 #include "render/render_session.h"
 #include "scene/precision_range.h"
 #include "scene/scene_loader.h"
@@ -135,15 +136,31 @@ void print_device_shares(const RenderReport& r) {
   std::printf("  combined: %.2f M paths/s on %zu devices\n", double(r.paths) / wall * 1e-6, r.devices.size());
 }
 
+// An MPI job: each rank's host, devices, share of the samples, its own paths/s over the time it
+// was busy, and the job's combined rate over the wall time of the passes.
+void print_rank_shares(const RenderReport& r) {
+  const double total = std::max<double>(1, double(r.paths));
+  const double wall = std::max(1e-9, r.render_seconds);
+  for (const RankShare& s : r.ranks)
+    std::printf("  rank %d on %s, %s: %5.1f%% of the samples, %.2f M paths/s, busy %.2f s (%.0f%%)%s\n", s.rank,
+                s.host.c_str(), s.devices.empty() ? "no device" : s.devices.c_str(), 100.0 * double(s.paths) / total,
+                double(s.paths) / std::max(1e-9, s.busy_seconds) * 1e-6, s.busy_seconds,
+                100.0 * s.busy_seconds / wall, s.failure.empty() ? "" : " (failed; its work went to the others)");
+  std::printf("  combined: %.2f M paths/s on %zu ranks\n", double(r.paths) / wall * 1e-6, r.ranks.size());
+}
+
 void print_summary(const Scene& scene, const RenderReport& r) {
   const double seconds = std::max(1e-9, r.render_seconds);
-  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many.
-  const std::string launches =
-      r.form == ExecutionForm::Megakernel ? " in " + std::to_string(r.launches) + " launches" : "";
+  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many (this
+  // process's only, so not for an MPI job).
+  const std::string launches = r.form == ExecutionForm::Megakernel && r.ranks.size() <= 1
+                                   ? " in " + std::to_string(r.launches) + " launches"
+                                   : "";
+  const std::string where = r.ranks.size() > 1 ? std::to_string(r.ranks.size()) + " MPI ranks" : r.device;
   std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s, %s, estimator %s, on %s\n", scene.file.c_str(),
               scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
               launches.c_str(), execution_form_name(r.form), precision_name(r.precision),
-              scene.settings.estimator.c_str(), r.device.c_str());
+              scene.settings.estimator.c_str(), where.c_str());
   std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
               "kernel build %.2f s (%s)\n",
               r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
@@ -158,6 +175,7 @@ void print_summary(const Scene& scene, const RenderReport& r) {
   if (r.dropped)
     std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
   if (r.devices.size() > 1) print_device_shares(r);
+  if (r.ranks.size() > 1) print_rank_shares(r);
 }
 
 // --resume: the checkpoint's film, checked against this render (exit 2 on any mismatch).
@@ -204,10 +222,24 @@ void check_checkpoint_path(const std::string& path) {
     throw Error(ExitCode::Usage, "--checkpoint " + path + ": directory '" + dir.string() + "' does not exist");
 }
 
+// A rank other than 0 of an MPI job: renders its parts and writes nothing; its exit code is rank
+// 0's, sent once rank 0 has written the outputs (so that no rank leaves the job before rank 0
+// knows whether the outputs could be written).
+int run_as_worker(RankGroup& ranks, const RenderRequest& request) {
+  RenderReport report;
+  run_render(request, report);
+  std::vector<uint8_t> code;
+  ranks.broadcast(code);
+  return code.empty() ? static_cast<int>(ExitCode::Failure) : int(code[0]);
+}
+
 int run(const RenderOptions& o) {
-  const std::string out = output_path(o);
+  // Under an MPI launcher: the job's ranks (loads MPI); otherwise this process alone.
+  RankGroup& ranks = process_rank_group();
+  const bool writes = ranks.coordinator();  // rank 0 alone checks and writes the outputs
+  const std::string out = writes ? output_path(o) : "";
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
-  if (!o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
+  if (writes && !o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
   Scene scene = load_scene_file(o.scene_path);
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
@@ -226,22 +258,27 @@ int run(const RenderOptions& o) {
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
-  request.show_progress = !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
+  request.show_progress = writes && !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
+  request.ranks = &ranks;
   request.launch_target_s = o.launch_ms / 1000;
   // After device selection, before any device work: the plan as every device will run it.
   if (o.explain) request.on_plan = [](const RenderPlan& plan) { std::printf("%s", explain_plan(plan).c_str()); };
   RenderReport report;
   request.scene = scene;
   // Scenes beyond what the extreme-scene tests proved for this preset (README "Numerical extremes").
-  if (!o.quiet)
+  if (!o.quiet && writes)
     for (const std::string& warning : precision_range_warnings(scene, request.precision))
       std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
-  prepare_resume_and_checkpoints(o, scene, request);
   install_interrupt_handlers();
   request.interrupt = &interrupt_flag();
+  if (!writes) return run_as_worker(ranks, request);
+  prepare_resume_and_checkpoints(o, scene, request);
   const Film film = run_render(request, report);
   if (!o.quiet) print_summary(scene, report);
-  return finish_outputs(o, out, film, scene, report);
+  const int code = finish_outputs(o, out, film, scene, report);  // throws: main ends the job
+  std::vector<uint8_t> code_for_workers = {uint8_t(code)};
+  ranks.broadcast(code_for_workers);
+  return code;
 }
 
 }  // namespace

@@ -17,25 +17,19 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/module_loader.h"
 
 namespace clpt {
 namespace {
 
 constexpr const char* kModuleName = "libclpt_image_io.so";
 
-// Where the module may be: $CLPT_IMAGE_IO_MODULE when set (then nowhere else); otherwise beside
-// the running executable (the build directory's clpt), then the path CMake built it at (test
-// executables live elsewhere).
-std::vector<std::string> module_candidates() {
-  if (const char* env = std::getenv("CLPT_IMAGE_IO_MODULE"); env && *env) return {env};
-  std::vector<std::string> paths;
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) paths.push_back((exe.parent_path() / kModuleName).string());
+std::vector<std::string> codec_candidates() {
 #ifdef CLPT_IMAGE_IO_MODULE_PATH
-  paths.emplace_back(CLPT_IMAGE_IO_MODULE_PATH);
+  return module_candidates("CLPT_IMAGE_IO_MODULE", kModuleName, CLPT_IMAGE_IO_MODULE_PATH);
+#else
+  return module_candidates("CLPT_IMAGE_IO_MODULE", kModuleName, nullptr);
 #endif
-  return paths;
 }
 
 std::string cannot_load(const std::string& tried) {
@@ -48,35 +42,19 @@ struct LoadResult {
   std::string error;  // when codec is null
 };
 
-LoadResult load_module() {
-  std::string tried;
-  for (const std::string& path : module_candidates()) {
-    if (!std::filesystem::exists(path)) {
-      tried += "\n  " + path + ": no such file";
-      continue;
-    }
-    // RTLD_NOW: every OIIO symbol is bound here, on the loading thread, not at first use.
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!handle) {
-      tried += "\n  " + path + ": " + dlerror();
-      continue;
-    }
-    using Entry = const ImageCodec* (*)();
-    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "clpt_image_codec_v1"));
-    if (!entry) {
-      tried += "\n  " + path + ": no clpt_image_codec_v1 (a module from another clpt version?)";
-      continue;
-    }
-    return {entry(), ""};  // the module stays loaded until the process ends
-  }
-  return {nullptr, cannot_load(tried)};
+LoadResult load_codec() {
+  // RTLD_NOW: every OIIO symbol is bound here, on the loading thread, not at first use.
+  const LoadedModule m = load_module(codec_candidates(), "clpt_image_codec_v1", RTLD_NOW | RTLD_LOCAL);
+  if (!m.entry) return {nullptr, cannot_load(m.tried)};
+  using Entry = const ImageCodec* (*)();
+  return {reinterpret_cast<Entry>(m.entry)(), ""};
 }
 
 std::once_flag load_started;
 std::shared_future<LoadResult> load_result;
 
 void start_loading() {
-  std::call_once(load_started, [] { load_result = std::async(std::launch::async, load_module).share(); });
+  std::call_once(load_started, [] { load_result = std::async(std::launch::async, load_codec).share(); });
 }
 
 // The codec, waiting for the load; throws Error(code) naming `what` when the module is missing.

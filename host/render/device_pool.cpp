@@ -63,7 +63,7 @@ struct DevicePool::Member {
 };
 
 struct DevicePool::PassState {
-  explicit PassState(uint32_t pixels) : queue(pixels) {}
+  explicit PassState(PixelRange pixels) : queue(pixels) {}
   PixelRangeQueue queue;
   int in_flight = 0;  // ranges taken and not yet added or given back
 };
@@ -118,7 +118,19 @@ void DevicePool::build(Member& m, const DevicePlan& plan, bool use_kernel_cache,
 }
 
 void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
-  PassState pass(params.pixel_count);
+  run_pass_part(params, PixelRange{0, params.pixel_count},
+                [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
+                  film.add_pass(result, pixel_begin, params.samples_per_pass);
+                });
+}
+
+bool DevicePool::every_device_failed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return working_count() == 0;
+}
+
+void DevicePool::run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink) {
+  PassState pass(pixels);
   std::vector<Member*> working;
   for (const auto& m : members_)
     if (!m->failed) working.push_back(m.get());
@@ -138,8 +150,8 @@ void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
   // The first working device runs on this thread: a single-device render starts no thread.
   std::vector<std::thread> threads;
   for (size_t i = 1; i < working.size(); ++i)
-    threads.emplace_back([&, i] { work(*working[i], params, film, pass, first[i]); });
-  if (!working.empty()) work(*working[0], params, film, pass, first[0]);
+    threads.emplace_back([&, i] { work(*working[i], params, sink, pass, first[i]); });
+  if (!working.empty()) work(*working[0], params, sink, pass, first[0]);
   for (std::thread& t : threads) t.join();
   if (fatal_) std::rethrow_exception(fatal_);
   if (!pass.queue.empty()) throw_every_device_failed();
@@ -151,7 +163,7 @@ void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
 
 // One device's loop within a pass: take a range, trace it, add it to the film; until the queue
 // is empty and no range is in flight (a range in flight may still come back from a failure).
-void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, PassState& pass, Taken first) {
+void DevicePool::work(Member& m, const GpuRenderParams& params, const PassSink& sink, PassState& pass, Taken first) {
   try {
     for (;;) {
       Taken taken = std::exchange(first, Taken{});
@@ -171,6 +183,8 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, Pass
       try {
         if (faults_.fails_launch(m.position, launch))
           FaultPlan::throw_injected(CL_OUT_OF_RESOURCES, "clEnqueueNDRangeKernel", m.ctx->where() + " (render_pass)");
+        if (const uint64_t ms = faults_.launch_delay_ms(m.position))
+          std::this_thread::sleep_for(std::chrono::milliseconds(ms));
         result = m.renderer->render_pass(p);
       } catch (const Error& e) {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -185,7 +199,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, Film& film, Pass
       uint64_t segments = 0;
       for (const GpuPixelPass& px : result) segments += px.segments;
       std::lock_guard<std::mutex> lock(mutex_);
-      film.add_pass(result, range.begin, params.samples_per_pass);
+      sink(result, range.begin);
       const double pixel_samples = double(range.count) * params.samples_per_pass;
       m.launch_rate = pixel_samples / seconds;
       m.this_pass.pixel_samples += pixel_samples;

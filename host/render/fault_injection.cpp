@@ -77,11 +77,24 @@ FaultPlan FaultPlan::parse(const std::string& spec) {
       const std::optional<double> factor = parse_factor(f[3]);
       fault.factor = factor.value_or(0);
       valid = device >= 0 && fault.channel >= 0 && factor.has_value();
+    } else if (f[0] == "delay" && f.size() == 3) {
+      fault.kind = Kind::Delay;
+      device = parse_count(f[1]);
+      const long long ms = parse_count(f[2]);
+      fault.delay_ms = uint64_t(std::max(0LL, ms));
+      valid = device >= 0 && ms >= 0;
+    } else if (f[0] == "exit" && f.size() == 2) {
+      fault.kind = Kind::Exit;
+      const long long pass = parse_count(f[1]);
+      fault.launch = uint64_t(std::max(0LL, pass));
+      device = 0;
+      valid = pass >= 1;
     }
     if (!valid)
       throw Error(ExitCode::Usage, std::string(kVariable) + "='" + spec + "': entry '" + entry +
-                                       "' is none of build:DEVICE, launch:DEVICE:N (N from 1) and "
-                                       "perturb:DEVICE:R|G|B:FACTOR (FACTOR a finite number > 0)");
+                                       "' is none of build:DEVICE, launch:DEVICE:N (N from 1), "
+                                       "perturb:DEVICE:R|G|B:FACTOR (FACTOR a finite number > 0), "
+                                       "delay:DEVICE:MS and exit:PASS (PASS from 1)");
     fault.device = size_t(device);
     plan.faults_.push_back(fault);
   }
@@ -110,6 +123,19 @@ std::array<double, 3> FaultPlan::channel_factors(size_t device) const {
   for (const Fault& f : faults_)
     if (f.kind == Kind::Perturb && f.device == device) factors[size_t(f.channel)] *= f.factor;
   return factors;
+}
+
+uint64_t FaultPlan::launch_delay_ms(size_t device) const {
+  uint64_t ms = 0;
+  for (const Fault& f : faults_)
+    if (f.kind == Kind::Delay && f.device == device) ms += f.delay_ms;
+  return ms;
+}
+
+bool FaultPlan::exits_at_pass(uint64_t pass) const {
+  for (const Fault& f : faults_)
+    if (f.kind == Kind::Exit && f.launch == pass) return true;
+  return false;
 }
 
 FaultPlan FaultPlan::for_device(size_t position) const {

@@ -8,6 +8,10 @@
 //   perturb:D:C:F  that device's sample radiance in channel C (R, G or B) is multiplied by F (a
 //                  finite number > 0) before it reaches the film: the pass sums by F, the sums of
 //                  squares by F^2, as if every sample had been F times brighter
+//   delay:D:MS     each launch of that device takes MS milliseconds longer (a slower device or
+//                  MPI rank: how work is shared by measured speed)
+//   exit:N         the process ends at once with exit status 1 when it starts its Nth pass (N
+//                  from 1), as a crashed MPI rank would (docs/mpi.md)
 // Unset or empty: no fault. Parsed here and nowhere else.
 #pragma once
 
@@ -32,6 +36,10 @@ class FaultPlan {
   bool fails_launch(size_t device, uint64_t launch_number) const;
   // Per channel (R, G, B), the product of the perturb factors of `device`; 1 where none.
   std::array<double, 3> channel_factors(size_t device) const;
+  // Milliseconds added to each launch of `device` (the sum of its delay faults; 0: none).
+  uint64_t launch_delay_ms(size_t device) const;
+  // Whether the process must end when it starts its pass number `pass` (from 1).
+  bool exits_at_pass(uint64_t pass) const;
   bool empty() const { return faults_.empty(); }
 
   // The faults of the device at `position`, renumbered as device 0: for a harness that renders
@@ -44,11 +52,12 @@ class FaultPlan {
   [[noreturn]] static void throw_injected(int code, const char* call, const std::string& where);
 
  private:
-  enum class Kind { Build, Launch, Perturb };
+  enum class Kind { Build, Launch, Perturb, Delay, Exit };
   struct Fault {
     Kind kind = Kind::Build;
     size_t device = 0;     // position in the --device list
-    uint64_t launch = 0;   // launch faults: which launch of that device, from 1
+    uint64_t launch = 0;   // launch faults: which launch of that device, from 1; exit: which pass
+    uint64_t delay_ms = 0; // delay: milliseconds added to each launch
     int channel = 0;       // perturb: 0 = R, 1 = G, 2 = B
     double factor = 1;     // perturb: multiplies that channel's sample radiance
   };

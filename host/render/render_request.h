@@ -18,6 +18,7 @@
 namespace clpt {
 
 struct RenderPlan;
+class RankGroup;
 
 struct RenderRequest {
   Scene scene;               // settings already merged with command-line overrides
@@ -50,6 +51,10 @@ struct RenderRequest {
   // `clpt verify` sets it: none for its reference renders, the tested device's own faults for
   // the device's.
   std::optional<FaultPlan> faults;
+  // The processes sharing this render (render/rank_group.h); null or a group of one: this
+  // process alone. Every rank of a larger group calls run_render with the same request, except
+  // that only rank 0's `resume`, `checkpoint` and `on_plan` are used.
+  RankGroup* ranks = nullptr;
 };
 
 }  // namespace clpt

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "cl/cl_device.h"
+#include "render/rank_group.h"
 #include "scene/device_scene.h"
 #include "util/clock.h"
 
@@ -50,21 +51,40 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   check_scene_limits(scene);  // before any device work: fails fast and allocates nothing
 
-  // 1. The devices (one, or several sharing every pass) and every decision of the render.
+  // 1. The devices (one, or several sharing every pass) and every decision of the render; the
+  //    ranks of an MPI job check that they all render the same thing.
   const RenderPlan plan = plan_render(request, select_devices(list_devices(), request.device));
-  if (request.on_plan) request.on_plan(plan);
+  RankGroup* ranks = request.ranks && request.ranks->size() > 1 ? request.ranks : nullptr;
+  if (ranks) check_ranks_agree(*ranks, render_identity(request, plan));
+  const bool coordinator = !ranks || ranks->coordinator();
+  if (request.on_plan && coordinator) request.on_plan(plan);
 
   // 2. The scene as the kernels see it; on each device a context and a kernel built as planned,
-  //    in parallel.
+  //    in parallel. A rank whose devices all fail takes no part; the others carry on.
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision);
-  DevicePool pool(plan, device_scene, request.faults ? *request.faults : FaultPlan::from_environment());
+  const FaultPlan faults = request.faults ? *request.faults : FaultPlan::from_environment();
+  std::unique_ptr<DevicePool> pool;
+  std::string failure;
+  try {
+    pool = std::make_unique<DevicePool>(plan, device_scene, faults);
+  } catch (const Error& e) {
+    if (!ranks) throw;
+    failure = e.what();
+  }
+  std::unique_ptr<RankPassTracer> rank_tracer;
+  std::unique_ptr<DevicePoolTracer> pool_tracer;
+  if (ranks)
+    rank_tracer = std::make_unique<RankPassTracer>(*ranks, pool.get(), failure, plan.image_pixels, faults, request.interrupt);
+  else
+    pool_tracer = std::make_unique<DevicePoolTracer>(*pool);
+  PassTracer& tracer = ranks ? static_cast<PassTracer&>(*rank_tracer) : *pool_tracer;
   report.precision = request.precision;
 
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
-  Film film = request.resume ? *request.resume : Film(settings.width, settings.height);
+  Film film = request.resume && coordinator ? *request.resume : Film(settings.width, settings.height);
   const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
   const auto t0 = Clock::now();
-  const PassLoopResult passes = run_passes(pool, make_params(scene, device_scene), film, pass_loop_options(plan, request));
+  const PassLoopResult passes = run_passes(tracer, make_params(scene, device_scene), film, pass_loop_options(plan, request));
 
   // 4. What happened.
   report.render_seconds = seconds_since(t0);
@@ -74,7 +94,8 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   report.paths = film.total_samples() - before.total_samples;
   report.segments = film.total_segments() - before.total_segments;
   report.dropped = film.dropped_samples();
-  report_devices(plan, pool, report);
+  if (pool) report_devices(plan, *pool, report);
+  if (ranks) report.ranks = rank_tracer->gather_shares();
   return film;
 }
 

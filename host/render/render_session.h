@@ -12,6 +12,7 @@
 #include "render/film.h"
 #include "render/limits.h"
 #include "render/pass_loop.h"
+#include "render/rank_pass.h"
 #include "render/render_plan.h"
 #include "render/render_request.h"
 #include "render/renderer.h"
@@ -39,9 +40,13 @@ struct RenderReport {
   uint64_t launches = 0;     // kernel launches of the passes (megakernel: pixel-range launches)
   bool interrupted = false;  // stopped early: `interrupt` was set before the target was reached
   std::vector<DeviceShare> devices;  // every device of --device, in its order (failed ones too)
+  // An MPI job: every rank's part, at rank 0 (empty on the other ranks and in a single process).
+  // The other fields are the job's at rank 0 (paths, spp, seconds) and this rank's devices.
+  std::vector<RankShare> ranks;
 };
 
-// Blocking. Throws clpt::Error on device or build failure.
+// Blocking. Throws clpt::Error on device or build failure (JobError on every rank of an MPI job
+// when the ranks disagree or every rank failed). On ranks other than 0 the returned film is empty.
 Film run_render(const RenderRequest& request, RenderReport& report);
 
 }  // namespace clpt

@@ -18,6 +18,8 @@ class PixelRangeQueue {
  public:
   // The pixels [0, pixels) of a pass, none handed out yet.
   explicit PixelRangeQueue(uint32_t pixels) : next_(0), end_(pixels) {}
+  // The pixels of `pixels` only (an MPI rank's part of a pass, render/rank_pass.h).
+  explicit PixelRangeQueue(PixelRange pixels) : next_(pixels.begin), end_(pixels.begin + pixels.count) {}
 
   // Pixels not handed out (ranges given back count again).
   uint32_t remaining() const;
