@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/device_pool.h"
+#include "render/error_estimate.h"
 #include "render/limits.h"
 #include "render/progress.h"
 #include "util/clock.h"
@@ -27,53 +28,59 @@ bool interrupted(const PassLoopOptions& options) {
 
 }  // namespace
 
-uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
-                           double target_s, uint32_t granularity) {
-  double want = samples_per_pixel_per_s > 0 ? samples_per_pixel_per_s * target_s : granularity;
-  want = std::clamp(want, double(granularity), double(kMaxSamplesPerPass));
-  uint64_t n = uint64_t(want) / granularity * granularity;
-  if (target > 0) n = std::min<uint64_t>(n, target - done);
-  return static_cast<uint32_t>(std::max<uint64_t>(n, 1));
-}
-
 PassLoopResult run_passes(DevicePool& pool, const GpuRenderParams& params, Film& film,
                           const PassLoopOptions& options) {
   PassLoopResult result;
-  const uint64_t stop_spp = options.target_spp ? options.target_spp : kMaxSpp;
-  const uint32_t g = options.granularity;
   Progress progress(options.show_progress);
   const Clock::time_point t0 = Clock::now();
   Clock::time_point last_checkpoint = t0;
   const uint64_t samples_before = film.total_samples();  // a resumed film already holds some
+  const uint64_t spp_before = film.samples_per_pixel();
   GpuRenderParams pass = params;
-  double rate = 0;  // samples per pixel per second
-  while (film.samples_per_pixel() < stop_spp) {
+  PassMeasurements measured;
+  PassScheduleState schedule;
+  for (;;) {
     print_notices(pool, progress);
     if (interrupted(options)) {
       result.interrupted = true;
       break;
     }
-    const double elapsed = seconds_since(t0);
-    if (options.time_limit_s > 0 && result.passes > 0 && elapsed >= options.time_limit_s) break;
-    double pass_s = options.pass_target_s;
-    if (options.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, options.time_limit_s - elapsed));
-    pass.sample_begin = static_cast<clpt_u32>(film.samples_per_pixel());
-    pass.samples_per_pass = std::min(
-        next_pass_samples(film.samples_per_pixel(), stop_spp, rate, pass_s, g),
-        std::max(g, pool.max_samples_per_pass(params.pixel_count) / g * g));
+    measured.elapsed_s = seconds_since(t0);
+    measured.max_samples_per_pass = pool.max_samples_per_pass(params.pixel_count);
+    const NextPass next = plan_next_pass(film, options.request, measured, schedule);
+    result.estimate = next.estimate;
+    if (next.stop != StopReason::None) {
+      result.stop = next.stop;
+      break;
+    }
+    pass.sample_begin = next.sample_begin;
+    pass.samples_per_pass = next.samples;
     const Clock::time_point pass_start = Clock::now();
     pool.run_pass(pass, film);
-    rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    measured.samples_per_pixel_per_s = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    ++measured.passes;
     ++result.passes;
     if (result.passes == 1 && options.after_first_pass) options.after_first_pass();
-    progress.update(result.passes, film.samples_per_pixel(), options.target_spp,
-                    double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0)),
-                    seconds_since(t0), options.time_limit_s);
+    ProgressState shown;
+    shown.passes = result.passes;
+    shown.spp_done = film.samples_per_pixel();
+    shown.spp_target = options.request.target_spp;
+    shown.samples_per_s = double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0));
+    shown.elapsed_s = seconds_since(t0);
+    shown.time_limit_s = options.request.time_limit_s;
+    shown.spp_this_run = film.samples_per_pixel() - spp_before;
+    if (options.request.target_error > 0) {
+      shown.target_error = options.request.target_error;
+      shown.estimate = estimate_error(film);
+      shown.predicted_spp = predicted_spp_for(shown.estimate, film.samples_per_pixel(), shown.target_error);
+    }
+    progress.update(shown);
     if (options.checkpoint && seconds_since(last_checkpoint) >= options.checkpoint_every_s) {
       options.checkpoint(film);
       last_checkpoint = Clock::now();
     }
   }
+  if (result.interrupted) result.estimate = estimate_error(film);
   print_notices(pool, progress);
   progress.finish();
   return result;
