@@ -169,8 +169,38 @@ TEST(PassSchedule, TargetErrorStopsOnlyAtACheckPointWithEqualHalves) {
     const NextPass next = plan_next_pass(film_with_halves(8, 8), request, measured, state);
     EXPECT_EQ(next.stop, StopReason::None);
     EXPECT_EQ(next.predicted_spp, 64u);
-    EXPECT_EQ(state.next_check_spp, check_ladder_at_or_above(uint64_t(0.95 * 64), 1));
+    EXPECT_EQ(state.next_check_spp, check_ladder_at_or_above(24, 1));  // the jump: at most 1.5 x 16
   }
+}
+
+// Whatever the measured rates (so the pass sizes), a render of S samples ends with the same halves
+// and draws the same sample indices: half 0 from 0, half 1 from 2^31.
+TEST(PassSchedule, HalvesAtTheEndDependOnTheSampleCountAlone) {
+  std::mt19937 rng(3);
+  for (uint32_t granularity : {1u, 16u})
+    for (uint64_t spp : {16u, 48u, 77u, 1000u}) {
+      if (spp % granularity) continue;
+      for (int trial = 0; trial < 20; ++trial) {
+        PassRequest request;
+        request.target_spp = spp;
+        request.granularity = granularity;
+        PassMeasurements measured;
+        PassScheduleState state;
+        Film film(1, 1);
+        for (;;) {
+          measured.samples_per_pixel_per_s = std::uniform_real_distribution<double>(0, 400)(rng);
+          const NextPass next = plan_next_pass(film, request, measured, state);
+          if (next.stop != StopReason::None) break;
+          EXPECT_EQ(next.sample_begin, (uint64_t(next.half) << 31) + film.half_samples_per_pixel(next.half));
+          film.add_pass({pass_of(std::vector<float>(next.samples, 1.0f))}, 0, next.samples);
+          ++measured.passes;
+        }
+        const uint64_t half0 = (spp + 2 * granularity - 1) / (2 * granularity) * granularity;
+        EXPECT_EQ(film.samples_per_pixel(), spp);
+        EXPECT_EQ(film.half_samples_per_pixel(0), half0) << spp << " spp, granularity " << granularity;
+        EXPECT_EQ(film.half_samples_per_pixel(1), spp - half0);
+      }
+    }
 }
 
 TEST(PassSchedule, SampleCountAndTimeLimitStopTheRender) {

@@ -112,7 +112,8 @@ TEST_P(TargetError, TrueErrorIsBetween0p6And1p2TimesTheTarget) {
   for (const Case& c : cases()) expect_calibrated(GetParam(), c, c.sampler == Sampler::Grid ? grid : box);
 }
 
-INSTANTIATE_TEST_SUITE_P(BookScenes, TargetError, ::testing::Values("diffuse", "specular", "glass"));
+INSTANTIATE_TEST_SUITE_P(BookScenes, TargetError, ::testing::Values("diffuse", "specular", "glass"),
+                         [](const ::testing::TestParamInfo<std::string>& param) { return param.param; });
 
 }  // namespace
 }  // namespace clpt::test

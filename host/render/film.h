@@ -56,6 +56,7 @@ class Film {
 
   // The two half-films. Half 1's sums and valid counts are stored; half 0 is the whole film less
   // half 1. half_samples_per_pixel(h): samples per pixel of the whole passes added to half h.
+  // Half 1's samples have indices from 2^31 (pass_schedule.h).
   // next_half(): the half the next pass goes to (fewer samples; 0 on a tie), fixed by the film's
   // own state, so every device and every resumed render agrees on it.
   uint64_t half_samples_per_pixel(int half) const { return half_spp_[half & 1]; }

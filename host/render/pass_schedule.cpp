@@ -42,9 +42,9 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
   const uint64_t stop_spp = request.target_spp ? std::min(request.target_spp, kMaxSpp) : kMaxSpp;
   const uint32_t g = std::max<uint32_t>(request.granularity, 1);
   next.estimate = estimate_error(film);
-  next.sample_begin = static_cast<uint32_t>(spp);
   next.half = film.next_half();
   const uint64_t half_spp[2] = {film.half_samples_per_pixel(0), film.half_samples_per_pixel(1)};
+  next.sample_begin = static_cast<uint32_t>((uint64_t(next.half) << CLPT_SAMPLE_STREAM_BIT) + half_spp[next.half]);
   const bool target_mode = request.target_error > 0;
   if (target_mode) next.predicted_spp = predicted_spp_for(next.estimate, spp, request.target_error);
 
@@ -63,8 +63,10 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
         next.stop = StopReason::TargetError;
         return next;
       }
-      // Jump towards the predicted count, a little short of it so the check lands near it.
-      const uint64_t aim = std::max<uint64_t>(spp + 1, uint64_t(0.95 * double(next.predicted_spp)));
+      // Jump towards the predicted count, a little short of it so the check lands near it, and at
+      // most by half the samples so far: an early estimate from few samples is noisy, and a jump
+      // too far cannot be undone (true error at the stop >= target / sqrt(1.5) from the jump alone).
+      const uint64_t aim = std::clamp<uint64_t>(uint64_t(0.95 * double(next.predicted_spp)), spp + 1, spp + spp / 2);
       state.next_check_spp = check_ladder_at_or_above(aim, g);
     }
   }
@@ -75,6 +77,10 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
   uint64_t n = next_pass_samples(spp, stop_spp, measured.samples_per_pixel_per_s, pass_s, g);
   // The smaller half only catches up: at equal halves the estimate is exact (error_estimate.h).
   if (half_spp[0] != half_spp[1]) n = std::min(n, std::max(half_spp[0], half_spp[1]) - half_spp[next.half]);
+  // At equal halves, half 0 takes at most its share (rounded up to the granularity) of what is
+  // left, so a render of S samples ends with halves of g ceil(S / 2g) and the rest whatever the
+  // pass sizes were: the samples drawn, and so the image, depend on S alone.
+  else n = std::min(n, round_up((stop_spp - spp + 1) / 2, g));
   // Target error: each half reaches half the next check point.
   if (target_mode && state.next_check_spp > spp && state.next_check_spp / 2 > half_spp[next.half])
     n = std::min(n, state.next_check_spp / 2 - half_spp[next.half]);

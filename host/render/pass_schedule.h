@@ -5,6 +5,12 @@
 //
 // With a target error the stopping rule is evaluated only at check points, totals of samples per
 // pixel on a fixed ladder (check_ladder_at_or_above) at which both half-films hold equal samples.
+// Sample indices: half 0 draws samples 0, 1, 2, ... of each pixel and half 1 samples 2^31,
+// 2^31 + 1, ... (kernels/types.h, CLPT_SAMPLE_STREAM_BIT), so the halves are independent for every
+// sampler, and a render of S samples ends with halves of g ceil(S / 2g) and S minus that samples
+// (g: the granularity) whatever its pass sizes were: the same seed and S give the same image on
+// any devices, split and resumed anyhow.
+//
 // Which check points are visited depends only on the estimates at earlier check points, and the
 // estimates depend only on the samples, which the counter-based RNG fixes by (seed, pixel,
 // sample): the sample count at which a render stops does not depend on the device split, the
@@ -46,7 +52,9 @@ enum class StopReason { None, SampleCount, TimeLimit, TargetError };
 
 struct NextPass {
   StopReason stop = StopReason::None;  // None: run the pass below
-  uint32_t sample_begin = 0;           // the film's samples per pixel
+  // Index of the pass's first sample: the half's samples so far, from 0 for half 0 and from
+  // 2^CLPT_SAMPLE_STREAM_BIT for half 1 (kernels/types.h: an independent Sobol randomisation).
+  uint32_t sample_begin = 0;
   uint32_t samples = 0;                // samples per pixel of the pass
   int half = 0;                        // the half-film it goes to (film.next_half())
   ErrorEstimate estimate;              // of the film before the pass
@@ -62,7 +70,8 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
 
 // The first check point at or above `spp` for a sampler of this granularity. The ladder starts
 // at 2 x max(8, granularity) (each half at least 8 samples before any stop) and grows by about
-// 1/8 a step, in even multiples of the granularity.
+// 1/8 a step, in even multiples of the granularity. After a check that fails, the next check is
+// the ladder point at or above 0.95 x the predicted samples, at most 1.5 x the samples so far.
 uint64_t check_ladder_at_or_above(uint64_t spp, uint32_t granularity);
 
 // Samples per pass from the rate alone: the first pass is one sampler period, later passes aim at
