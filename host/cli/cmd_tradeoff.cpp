@@ -121,15 +121,19 @@ LoadedReference load_reference(const std::string& path, RenderFile file, int wid
 }
 
 // A reference made from another scene file or path length measures a different image: say so.
-void warn_about_mismatches(const LoadedReference& ref, const Scene& scene) {
+// `samplers`: the renders' samplers (--sampler, or the scene's when none or one is given).
+void warn_about_mismatches(const LoadedReference& ref, const Scene& scene, const std::vector<std::string>& samplers) {
   if (!ref.file.scene_hash.empty() && ref.file.scene_hash != scene.file_hash)
     std::fprintf(stderr, "clpt: warning: --reference %s was rendered from another scene file (clpt:scene_hash %s, "
                          "%s has %s): its bias figures compare different images\n",
                  ref.info.path.c_str(), ref.file.scene_hash.c_str(), scene.file.c_str(), scene.file_hash.c_str());
-  if (!ref.file.sampler.empty() && ref.file.sampler != sampler_name(scene.settings.sampler))
-    std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but the renders use %s: the two "
-                         "converge to different pixel filters, which shows as bias (set --sampler)\n",
-                 ref.info.path.c_str(), ref.file.sampler.c_str(), sampler_name(scene.settings.sampler));
+  // Jitter and Sobol average the pixel's box; grid takes its 16 fixed points.
+  auto filter = [](const std::string& sampler) { return sampler == "grid" ? "grid" : "box"; };
+  for (const std::string& sampler : samplers)
+    if (!ref.file.sampler.empty() && std::string(filter(ref.file.sampler)) != filter(sampler))
+      std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but renders use %s: the two "
+                           "converge to different pixel filters, which shows as bias (set --sampler)\n",
+                   ref.info.path.c_str(), ref.file.sampler.c_str(), sampler.c_str());
   const std::optional<uint64_t> bounces = ref.file.max_bounces;
   if (bounces && *bounces != uint64_t(scene.settings.max_bounces))
     std::fprintf(stderr, "clpt: warning: --reference %s has max_bounces %llu but the renders %d: the "
@@ -294,7 +298,8 @@ int run(const TradeoffOptions& o) {
                                  "multiple of 16 samples per pixel");
   const LoadedReference ref =
       load_reference(o.reference_path, std::move(reference_file), scene.settings.width, scene.settings.height);
-  warn_about_mismatches(ref, scene);
+  warn_about_mismatches(ref, scene, o.samplers.size() > 1 ? o.samplers
+                                                          : std::vector<std::string>{sampler_name(scene.settings.sampler)});
   bool seed_moved = false;
   scene.settings.seed = choose_seed(o, scene, ref, seed_moved);
   TradeoffResult result;
