@@ -92,16 +92,21 @@ CLPT_INLINE SobolPoint sobol_point(uint sample_reversed, uint shuffle_seed, uint
 /* The draw for (pixel, sample, dimension) from the chosen sampler: four uniforms in [0, 1), each
  * with 24 random bits. One Philox evaluation serves both samplers: jitter's is addressed by
  * (pixel, sample, dimension, 0), the same numbers as before the Sobol sampler existed; Sobol's
- * seeds by (pixel, 0, dimension, 1), which no jitter draw uses. Sobol's second pair takes its
+ * seeds by (pixel, stream, dimension, 1), which no jitter draw uses. The stream is the sample
+ * index's top bit (CLPT_SAMPLE_STREAM_BIT): the host puts the passes of its second half-film
+ * there (render/pass_schedule.h), and the Sobol points of stream 1 are an independent
+ * randomisation (own shuffles and scrambles) of the same sequence, read from its start, so the
+ * two half-films are independent estimates whose difference measures the error honestly
+ * (render/error_estimate.h). Sobol's second pair takes its
  * shuffle seed from the fourth word, independent of the first pair's seeds, and its scramble
  * seeds from the first pair's mixed with that word through bijections, so each is uniform
  * (they are not independent of the first pair's, but the independent shuffle already
  * decorrelates the two pairs). */
 CLPT_INLINE Uniform4 sampler_uniform4(RngKey key, uint sampler, uint pixel, uint sample, uint dimension) {
   const bool sobol = sampler == CLPT_SAMPLER_SOBOL;
-  const Philox4 bits = philox4x32_10(philox4(pixel, sobol ? 0u : sample, dimension, sobol ? 1u : 0u),
-                                     key.k0, key.k1);
-  const uint reversed = sobol_reverse_bits(sample);
+  const Philox4 bits = philox4x32_10(
+      philox4(pixel, sobol ? sample >> CLPT_SAMPLE_STREAM_BIT : sample, dimension, sobol ? 1u : 0u), key.k0, key.k1);
+  const uint reversed = sobol_reverse_bits(sample & ((1u << CLPT_SAMPLE_STREAM_BIT) - 1u));
   const SobolPoint a = sobol_point(reversed, bits.x, bits.y, bits.z);
   const SobolPoint b = sobol_point(reversed, bits.w, (bits.y ^ bits.w) * 0x9E3779B9u,
                                    bits.z + bits.w * 0xBB67AE85u);

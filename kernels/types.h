@@ -23,6 +23,11 @@ typedef uint32_t clpt_u32;
 #define CLPT_MATERIAL_GLASS 2u
 #define CLPT_MATERIAL_EMITTER 3u
 
+/* Sample indices of the second half-film start at 2^CLPT_SAMPLE_STREAM_BIT (render/film.h,
+ * render/pass_schedule.h): its samples are fresh for jitter and grid, and an independent Sobol
+ * randomisation (sampler.cl). Each half holds fewer than 2^31 samples (kMaxSpp). */
+#define CLPT_SAMPLE_STREAM_BIT 31u
+
 /* Sub-pixel samplers (GpuRenderParams.sampler). */
 #define CLPT_SAMPLER_JITTER 0u /* 4x4 strata, uniform inside each, strata order shuffled per 16 */
 #define CLPT_SAMPLER_GRID 1u   /* the book's 4x4 fixed sub-pixel centres */
@@ -91,7 +96,7 @@ typedef struct GpuRenderParams {
   clpt_u32 max_bounces;      /* bounce rays after the camera ray */
   clpt_u32 seed_lo;          /* RNG key, low 32 bits of the user seed */
   clpt_u32 seed_hi;          /* RNG key, high 32 bits */
-  clpt_u32 sample_begin;     /* global index of this pass's first sample in each pixel */
+  clpt_u32 sample_begin;     /* index of this pass's first sample in each pixel (half 1: from 2^31) */
   clpt_u32 samples_per_pass; /* samples per pixel in this pass */
   clpt_u32 sampler;          /* CLPT_SAMPLER_* */
   float ray_epsilon;         /* hits closer than this along a ray are ignored, world units */

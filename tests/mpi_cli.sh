@@ -9,7 +9,8 @@
 #  * the summary names every rank with its host, devices, share, paths/s and busy time;
 #  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share (and the image is one
 #    process's, same seed, up to the rounding of other pass boundaries);
-#  * --time over 2 ranks ends with whole passes written;
+#  * --time over 2 ranks ends with whole passes written; --target-error over 2 ranks stops at one
+#    process's sample count with its image;
 #  * a checkpoint of 3 ranks resumed by 2 equals an uninterrupted render;
 #  * SIGINT to mpirun: the finished passes written, rank 0 exits 130;
 #  * a rank whose device fails: its part goes to the other rank, the same film;
@@ -55,6 +56,17 @@ for sampler in jitter sobol; do
   "${mpirun[@]}" -n 2 "$clpt" "${args[@]}" -q -o s2.pfm --checkpoint $sampler.two.ckpt || fail "$sampler: mpirun exit $?"
   same_film $sampler.one.ckpt $sampler.two.ckpt "--sampler $sampler over 2 ranks"
 done
+
+# --target-error over 2 ranks: rank 0 estimates the error from its film and stops the job at the
+# sample count one process stops at (the check points depend on the samples only); pass sizes
+# between check points follow the measured rate, so the images agree up to float rounding.
+target=(render "$scene" "${small[@]}" --estimator nee --sampler sobol --target-error 0.1)
+"$clpt" "${target[@]}" -o t1.exr >t1.out 2>&1 || fail "--target-error, one process: exit $?: $(cat t1.out)"
+"${mpirun[@]}" -n 2 "$clpt" "${target[@]}" -o t2.exr >t2.out 2>&1 || { fail "--target-error over 2 ranks: exit $?"; cat t2.out; }
+spp_of() { grep -o "x48, [0-9]* spp" "$1" | head -1; }
+[[ -n $(spp_of t1.out) && $(spp_of t1.out) == $(spp_of t2.out) ]] ||
+  fail "--target-error: one process stopped at '$(spp_of t1.out)', 2 ranks at '$(spp_of t2.out)'"
+"$clpt" compare t1.exr t2.exr --same-seed >t_cmp.out 2>&1 || { fail "--target-error over 2 ranks: not one process's image"; cat t_cmp.out; }
 
 # 2. MPI is loaded only under a launcher.
 LD_DEBUG=files "$clpt" "${grid[@]}" -q -o plain.pfm 2>ld_plain.txt || fail "plain render under LD_DEBUG: exit $?"

@@ -1,7 +1,13 @@
-// The host film: double accumulation across passes, variance of the mean, dropped samples.
+// The host film: double accumulation across passes, variance of the mean, dropped samples; its
+// half-films, the error estimate made from them, and the schedule of passes that uses it.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
+#include "render/error_estimate.h"
 #include "render/film.h"
+#include "render/pass_schedule.h"
 #include "render/render_session.h"
 
 namespace clpt {
@@ -42,6 +48,172 @@ TEST(PassSizing, FirstPassIsOnePeriodThenAimsAtTheTarget) {
   EXPECT_EQ(next_pass_samples(16, 64, 1000, 0.5, 16), 48u);  // capped by what is left
   EXPECT_EQ(next_pass_samples(0, 0, 100, 0.5, 1), 50u);       // time-bounded: 0.5 s worth
   EXPECT_EQ(next_pass_samples(0, 0, 1e9, 0.5, 1), kMaxSamplesPerPass);
+}
+
+TEST(FilmHalves, EachPassGoesWholeToTheSmallerHalf) {
+  Film film(2, 1);
+  EXPECT_EQ(film.next_half(), 0);
+  film.add_pass({pass_of({1}), pass_of({1})}, 0, 1);  // half 0: 1
+  EXPECT_EQ(film.next_half(), 1);
+  film.add_pass({pass_of({3, 3})}, 0, 2);  // half 1, in two launches
+  EXPECT_EQ(film.next_half(), 1);         // the pass is not complete yet: still half 1
+  film.add_pass({pass_of({5, 5})}, 1, 2);
+  EXPECT_EQ(film.half_samples_per_pixel(0), 1u);
+  EXPECT_EQ(film.half_samples_per_pixel(1), 2u);
+  EXPECT_EQ(film.next_half(), 0);
+  EXPECT_DOUBLE_EQ(film.half1_sums()[0], 6.0);
+  EXPECT_DOUBLE_EQ(film.half1_sums()[3], 10.0);
+  EXPECT_DOUBLE_EQ(film.half1_valid_counts()[1], 2.0);
+}
+
+TEST(ErrorEstimate, EqualHalvesGiveAQuarterOfTheirSquaredDifference) {
+  Film film(1, 1);
+  EXPECT_FALSE(estimate_error(film).valid);
+  film.add_pass({pass_of({1, 1})}, 0, 2);
+  EXPECT_FALSE(estimate_error(film).valid);  // one half only
+  film.add_pass({pass_of({3, 3})}, 0, 2);
+  const ErrorEstimate e = estimate_error(film);
+  ASSERT_TRUE(e.valid);
+  EXPECT_DOUBLE_EQ(e.mse, 1.0);  // (1 - 3)^2 / 4
+  EXPECT_DOUBLE_EQ(e.image_mean, 2.0);
+  EXPECT_DOUBLE_EQ(e.relative_rmse, 0.5);
+  EXPECT_DOUBLE_EQ(e.relative_rmse_upper, 0.5);  // every term equal: no spread
+}
+
+// A stratified toy: each pass of n samples integrates f(u) = u over n equal strata, one uniform
+// point in each. The mean of one pass has variance 1/(12 n^3), the film of two passes 1/(24 n^3);
+// the per-pixel sample variance s^2/(2n) says about 1/(24 n), n^2 times too much. The half-film
+// estimate must find 1/(24 n^3): it is a mean over 3 x 4000 terms, each a scaled chi-square with
+// one degree of freedom (relative standard deviation sqrt(2)), so within 5 standard errors of it.
+TEST(ErrorEstimate, IsUnbiasedForAStratifiedSampler) {
+  constexpr int kPixels = 4000, kStrata = 8;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  Film film(kPixels, 1);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<GpuPixelPass> passes;
+    for (int p = 0; p < kPixels; ++p) {
+      std::vector<float> values;
+      for (int i = 0; i < kStrata; ++i) values.push_back((float(i) + uniform(rng)) / kStrata);
+      passes.push_back(pass_of(values));
+    }
+    film.add_pass(passes, 0, kStrata);
+  }
+  const ErrorEstimate e = estimate_error(film);
+  const double expected = 1.0 / (24.0 * kStrata * kStrata * kStrata);
+  const double standard_error = expected * std::sqrt(2.0 / (3.0 * kPixels));
+  EXPECT_NEAR(e.mse, expected, 5 * standard_error);
+  EXPECT_NEAR(e.image_mean, 0.5, 1e-3);
+  const std::vector<float> variance = film.variance_rgb();
+  double variance_mean = 0;
+  for (float v : variance) variance_mean += v / double(variance.size());
+  EXPECT_GT(variance_mean, 20 * expected);  // what the per-pixel variance would have claimed
+}
+
+TEST(PassSchedule, CheckLadderStartsAt16AndGrowsByAnEighth) {
+  EXPECT_EQ(check_ladder_at_or_above(0, 1), 16u);
+  EXPECT_EQ(check_ladder_at_or_above(16, 1), 16u);
+  EXPECT_EQ(check_ladder_at_or_above(17, 1), 18u);
+  EXPECT_EQ(check_ladder_at_or_above(0, 16), 32u);
+  EXPECT_EQ(check_ladder_at_or_above(33, 16), 64u);
+  for (uint64_t spp : {100u, 1000u, 100000u}) {
+    const uint64_t point = check_ladder_at_or_above(spp, 1);
+    EXPECT_GE(point, spp);
+    EXPECT_LE(point, spp + spp / 8 + 2);
+    EXPECT_EQ(point % 2, 0u);
+  }
+}
+
+// A 1x1 film whose two halves hold `a` and `b` samples of value 1 and 3.
+Film film_with_halves(uint32_t a, uint32_t b) {
+  Film film(1, 1);
+  film.add_pass({pass_of(std::vector<float>(a, 1.0f))}, 0, a);
+  if (b) film.add_pass({pass_of(std::vector<float>(b, 3.0f))}, 0, b);
+  return film;
+}
+
+TEST(PassSchedule, TargetErrorStopsOnlyAtACheckPointWithEqualHalves) {
+  PassRequest request;
+  request.target_error = 0.6;  // the films above estimate 0.5
+  PassMeasurements measured;
+  measured.passes = 1;
+  {
+    PassScheduleState state;
+    const NextPass first = plan_next_pass(Film(1, 1), request, measured, state);
+    EXPECT_EQ(first.stop, StopReason::None);
+    EXPECT_EQ(first.samples, 1u);  // no rate yet: one sampler period
+    EXPECT_EQ(state.next_check_spp, 16u);
+  }
+  {
+    PassScheduleState state;  // 4 + 4 samples: below the first check point, go on
+    const NextPass next = plan_next_pass(film_with_halves(4, 4), request, measured, state);
+    EXPECT_EQ(next.stop, StopReason::None);
+    EXPECT_EQ(next.half, 0);
+    measured.samples_per_pixel_per_s = 1e6;
+    EXPECT_EQ(plan_next_pass(film_with_halves(4, 4), request, measured, state).samples, 4u);  // to 8 + 8
+  }
+  {
+    PassScheduleState state;  // 8 + 4: half 1 catches up first
+    const NextPass next = plan_next_pass(film_with_halves(8, 4), request, measured, state);
+    EXPECT_EQ(next.stop, StopReason::None);
+    EXPECT_EQ(next.half, 1);
+    EXPECT_EQ(next.samples, 4u);
+  }
+  {
+    PassScheduleState state;  // 8 + 8 at the check point 16, estimate 0.5 <= 0.6: stop
+    EXPECT_EQ(plan_next_pass(film_with_halves(8, 8), request, measured, state).stop, StopReason::TargetError);
+  }
+  {
+    request.target_error = 0.25;  // needs 4x the samples: the next check point jumps towards 64
+    PassScheduleState state;
+    const NextPass next = plan_next_pass(film_with_halves(8, 8), request, measured, state);
+    EXPECT_EQ(next.stop, StopReason::None);
+    EXPECT_EQ(next.predicted_spp, 64u);
+    EXPECT_EQ(state.next_check_spp, check_ladder_at_or_above(24, 1));  // the jump: at most 1.5 x 16
+  }
+}
+
+// Whatever the measured rates (so the pass sizes), a render of S samples ends with the same halves
+// and draws the same sample indices: half 0 from 0, half 1 from 2^31.
+TEST(PassSchedule, HalvesAtTheEndDependOnTheSampleCountAlone) {
+  std::mt19937 rng(3);
+  for (uint32_t granularity : {1u, 16u})
+    for (uint64_t spp : {16u, 48u, 77u, 1000u}) {
+      if (spp % granularity) continue;
+      for (int trial = 0; trial < 20; ++trial) {
+        PassRequest request;
+        request.target_spp = spp;
+        request.granularity = granularity;
+        PassMeasurements measured;
+        PassScheduleState state;
+        Film film(1, 1);
+        for (;;) {
+          measured.samples_per_pixel_per_s = std::uniform_real_distribution<double>(0, 400)(rng);
+          const NextPass next = plan_next_pass(film, request, measured, state);
+          if (next.stop != StopReason::None) break;
+          EXPECT_EQ(next.sample_begin, (uint64_t(next.half) << 31) + film.half_samples_per_pixel(next.half));
+          film.add_pass({pass_of(std::vector<float>(next.samples, 1.0f))}, 0, next.samples);
+          ++measured.passes;
+        }
+        const uint64_t half0 = (spp + 2 * granularity - 1) / (2 * granularity) * granularity;
+        EXPECT_EQ(film.samples_per_pixel(), spp);
+        EXPECT_EQ(film.half_samples_per_pixel(0), half0) << spp << " spp, granularity " << granularity;
+        EXPECT_EQ(film.half_samples_per_pixel(1), spp - half0);
+      }
+    }
+}
+
+TEST(PassSchedule, SampleCountAndTimeLimitStopTheRender) {
+  PassRequest request;
+  request.target_spp = 16;
+  PassMeasurements measured;
+  PassScheduleState state;
+  EXPECT_EQ(plan_next_pass(film_with_halves(8, 8), request, measured, state).stop, StopReason::SampleCount);
+  request.target_spp = 0;
+  request.time_limit_s = 1;
+  measured.passes = 1;
+  measured.elapsed_s = 1.5;
+  EXPECT_EQ(plan_next_pass(film_with_halves(8, 8), request, measured, state).stop, StopReason::TimeLimit);
 }
 
 }  // namespace

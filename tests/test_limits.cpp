@@ -148,14 +148,45 @@ TEST_F(Checkpoint, RoundTripsTheFilmExactly) {
   GpuPixelPass p{};
   p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 2, p.segments = 7;
   film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  p.sum[1] = 0.5f;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);  // half 1
   save_checkpoint(path_, scene, film);
   const Film back = load_checkpoint(path_, scene);
-  EXPECT_EQ(back.samples_per_pixel(), 3u);
+  EXPECT_EQ(back.samples_per_pixel(), 6u);
+  EXPECT_EQ(back.half_samples_per_pixel(1), 3u);
+  EXPECT_EQ(back.half1_sums(), film.half1_sums());
+  EXPECT_EQ(back.half1_valid_counts(), film.half1_valid_counts());
   EXPECT_EQ(back.sums(), film.sums());
   EXPECT_EQ(back.sums_of_squares(), film.sums_of_squares());
   EXPECT_EQ(back.valid_counts(), film.valid_counts());
-  EXPECT_EQ(back.total_segments(), 84u);
-  EXPECT_EQ(back.dropped_samples(), 12u);
+  EXPECT_EQ(back.total_segments(), 168u);
+  EXPECT_EQ(back.dropped_samples(), 24u);
+}
+
+// A version-1 file (before the half-films: the same bytes without the trailing half-film) is
+// still read, with every sample in half 0, so that the resumed passes fill half 1 first.
+TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
+  const Scene scene = small_scene();
+  Film film(4, 3);
+  GpuPixelPass p{};
+  p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 3;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  save_checkpoint(path_, scene, film);
+  const size_t pixels = 12, half_film_bytes = 8 + pixels * 4 * sizeof(double);
+  std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - half_film_bytes);
+  {
+    std::fstream f(path_, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(8);
+    const uint32_t version = 1;
+    f.write(reinterpret_cast<const char*>(&version), sizeof version);
+  }
+  const Film back = load_checkpoint(path_, scene);
+  EXPECT_EQ(back.samples_per_pixel(), 6u);
+  EXPECT_EQ(back.sums(), film.sums());
+  EXPECT_EQ(back.half_samples_per_pixel(0), 6u);
+  EXPECT_EQ(back.half_samples_per_pixel(1), 0u);
+  EXPECT_EQ(back.next_half(), 1);
 }
 
 TEST_F(Checkpoint, MismatchesNameTheField) {

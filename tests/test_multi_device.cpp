@@ -101,6 +101,30 @@ TEST(MultiDeviceIdentical, SobolTwoDevicesGiveTheImageOfOne) {
   }
 }
 
+// --target-error over two devices stops at the sample count of one device (the stopping rule
+// reads only the samples, pass_schedule.h), with the same image up to the float rounding of pass
+// sums (pass sizes follow each run's measured rate).
+TEST(MultiDeviceIdentical, TargetErrorStopsAtTheSameSamplesOnTwoDevices) {
+  require_two_devices();
+  auto render = [](const std::string& device, RenderReport& report) {
+    RenderRequest request = one_pass_request(device, ExecutionForm::Megakernel);
+    request.scene.settings.estimator = "nee";
+    request.scene.settings.sampler = Sampler::Jitter;
+    request.target_error = 0.1;
+    request.spp_given = false;
+    return run_render(request, report);
+  };
+  RenderReport one_report, two_report;
+  const Film one = render("0", one_report);
+  const Film two = render("all", two_report);
+  ASSERT_EQ(two_report.devices.size(), 2u);
+  EXPECT_EQ(one_report.stop, StopReason::TargetError);
+  EXPECT_EQ(two_report.stop, StopReason::TargetError);
+  EXPECT_EQ(one.samples_per_pixel(), two.samples_per_pixel());
+  EXPECT_EQ(one.half_samples_per_pixel(1), two.half_samples_per_pixel(1));
+  expect_same_image(one.mean_rgb(), two.mean_rgb());
+}
+
 TEST(MultiDeviceIdentical, FailedLaunchGoesToTheOtherDevice) {
   require_two_devices();
   RenderReport straight_report, report;

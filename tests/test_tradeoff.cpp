@@ -223,6 +223,20 @@ TEST(TradeoffCurve, OneCombinationsBudgetRunsByTime) {
   EXPECT_EQ(mega.label(), "robust/book/megakernel/dev0");
 }
 
+// --sampler with several samplers makes the sampler a dimension: its own curve and label.
+TEST(TradeoffCurve, SeveralSamplersAreSeparateCurves) {
+  Combination jitter = combination(ExecutionForm::Megakernel), sobol = jitter;
+  jitter.sampler = "jitter";
+  sobol.sampler = "sobol";
+  EXPECT_EQ(sobol.label(), "robust/book/megakernel/sobol/dev0");
+  const std::vector<TradeoffRun> runs = {budget_run(jitter, 1, 1.0, 0.07), budget_run(sobol, 1, 1.1, 0.04),
+                                         budget_run(sobol, 2, 2.2, 0.02)};
+  EXPECT_EQ(curve_of(runs, jitter.label()).size(), 1u);
+  const std::vector<CurvePoint> curve = curve_of(runs, sobol.label());
+  ASSERT_EQ(curve.size(), 2u);
+  EXPECT_EQ(curve[1].rmse, 0.02);
+}
+
 TEST(TradeoffTargetFrom, ParsesNamesInAnyOrder) {
   const TargetFrom a = parse_target_from("book@256");
   EXPECT_EQ(a.spp, 256u);

@@ -31,6 +31,7 @@ struct RenderOptions {
   std::string output;
   std::optional<int64_t> spp;
   std::optional<double> time_s;
+  std::optional<double> target_error;  // --target-error, relative RMSE
   std::optional<uint64_t> seed;
   std::string device;
   std::optional<int> width, height, max_bounces;
@@ -84,15 +85,16 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
   if (o.estimator) s.estimator = *o.estimator;
   if (o.rr_from) s.rr_from = *o.rr_from;
   if (o.light_sampling) s.light_sampling = *o.light_sampling;
-  if (s.sampler == Sampler::Grid && (o.spp || !o.time_s) && s.spp % 16 != 0)
+  if (s.sampler == Sampler::Grid && (o.spp || (!o.time_s && !o.target_error)) && s.spp % 16 != 0)
     throw Error(ExitCode::Usage, "--spp " + std::to_string(s.spp) +
                                      ": the grid sampler needs a multiple of 16 samples per pixel "
                                      "(--sampler jitter takes any count)");
 }
 
 // scene and report feed the EXR metadata only (unused in the OIIO-free build).
-void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] const Scene& scene,
-                   [[maybe_unused]] const RenderReport& report, bool quiet) {
+void write_outputs(const RenderOptions& o, const std::string& path, const Film& film,
+                   [[maybe_unused]] const Scene& scene, [[maybe_unused]] const RenderReport& report) {
+  const bool quiet = o.quiet;
   const std::string ext = std::filesystem::path(path).extension().string();
   std::string written = path;
   if (ext == ".pfm") {
@@ -114,6 +116,9 @@ void write_outputs(const std::string& path, const Film& film, [[maybe_unused]] c
     info.max_bounces = uint64_t(scene.settings.max_bounces);
     info.dropped_samples = report.dropped;
     info.interrupted = report.interrupted;
+    if (report.estimate.valid) info.error_estimate = report.estimate.relative_rmse_upper;
+    info.target_error = o.target_error;
+    if (report.stop != StopReason::None) info.stop = stop_reason_name(report.stop);
     written += " and " + write_render_file(path, film, info);
 #endif
   }
@@ -172,6 +177,12 @@ void print_summary(const Scene& scene, const RenderReport& r) {
       std::printf(" %s %.3f s (%llu launches);", t.label.c_str(), t.seconds, (unsigned long long)t.launches);
     std::printf(" %u paths in flight\n", r.paths_in_flight);
   }
+  if (r.estimate.valid)
+    std::printf("  estimated relative error %.2f%% (RMSE over the image's mean; upper estimate, %llu+%llu spp "
+                "halves)%s%s\n",
+                100 * r.estimate.relative_rmse_upper, (unsigned long long)r.estimate.half_spp[0],
+                (unsigned long long)r.estimate.half_spp[1], r.stop != StopReason::None ? "; stopped at the " : "",
+                r.stop != StopReason::None ? stop_reason_name(r.stop) : "");
   if (r.dropped)
     std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
   if (r.devices.size() > 1) print_device_shares(r);
@@ -208,7 +219,7 @@ int finish_outputs(const RenderOptions& o, const std::string& out, const Film& f
     save_checkpoint(o.checkpoint, scene, film);
     if (!o.quiet) std::printf("wrote checkpoint %s (%llu spp)\n", o.checkpoint.c_str(), spp);
   }
-  write_outputs(out, film, scene, report, o.quiet);
+  write_outputs(o, out, film, scene, report);
   if (!signalled) return 0;
   std::fprintf(stderr, "clpt: interrupted: wrote the %llu finished samples per pixel%s\n", spp,
                report.interrupted ? "" : " (the render had completed)");
@@ -247,7 +258,8 @@ int run(const RenderOptions& o) {
   RenderRequest request;
   request.device = o.device;
   request.time_limit_s = o.time_s.value_or(0.0);
-  request.spp_given = o.spp.has_value() || !o.time_s.has_value();
+  request.target_error = o.target_error.value_or(0.0);
+  request.spp_given = o.spp.has_value() || (!o.time_s && !o.target_error);
   request.generic_kernel = o.generic;
   request.precision = precision;
   if (o.intersection) request.intersection = parse_intersection(*o.intersection);
@@ -291,6 +303,10 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--spp", o->spp, "Samples per pixel (default: the scene's)")->check(CLI::Range(int64_t(1), int64_t(1) << 31));
   cmd->add_option("--time", o->time_s, "Stop after this many seconds (with --spp: whichever comes first)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--target-error", o->target_error,
+                  "Stop when clpt's estimate of the image's relative RMSE falls to this (e.g. 0.05 for 5%); "
+                  "with --spp and --time, whichever comes first")
+      ->check(CLI::Range(1e-4, 1.0));
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's)");
   cmd->add_option("--device", o->device, "Device: index from `clpt devices`, cpu, gpu, cpu:N, gpu:N, a name substring; "
                   "several: all, or a comma list (0,1)");

@@ -1,5 +1,6 @@
 // `clpt tradeoff SCENE --reference REF.exr`: speed against accuracy. Renders the scene for a series
-// of time budgets in every chosen combination of precision, estimator, execution form and device,
+// of time budgets in every chosen combination of precision, estimator, execution form, sampler
+// and device,
 // measures each render's error against the reference and splits it into noise and bias
 // (tools/tradeoff.h), then prints how long each combination takes to reach given RMSEs and writes
 // the runs as CSV or JSON and an RMSE-versus-time plot (through gnuplot).
@@ -42,7 +43,7 @@ struct TradeoffOptions {
   std::string target_from;
   std::string output, plot;
   std::optional<int> width, height, max_bounces, rr_from;
-  std::optional<std::string> sampler;
+  std::vector<std::string> samplers;  // --sampler: one sets the scene's; several are a dimension
   std::optional<uint64_t> seed;
   double launch_ms = 75;  // megakernel launch target, as `clpt render --launch-ms`
   bool no_warmup = false;
@@ -120,15 +121,19 @@ LoadedReference load_reference(const std::string& path, RenderFile file, int wid
 }
 
 // A reference made from another scene file or path length measures a different image: say so.
-void warn_about_mismatches(const LoadedReference& ref, const Scene& scene) {
+// `samplers`: the renders' samplers (--sampler, or the scene's when none or one is given).
+void warn_about_mismatches(const LoadedReference& ref, const Scene& scene, const std::vector<std::string>& samplers) {
   if (!ref.file.scene_hash.empty() && ref.file.scene_hash != scene.file_hash)
     std::fprintf(stderr, "clpt: warning: --reference %s was rendered from another scene file (clpt:scene_hash %s, "
                          "%s has %s): its bias figures compare different images\n",
                  ref.info.path.c_str(), ref.file.scene_hash.c_str(), scene.file.c_str(), scene.file_hash.c_str());
-  if (!ref.file.sampler.empty() && ref.file.sampler != sampler_name(scene.settings.sampler))
-    std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but the renders use %s: the two "
-                         "converge to different pixel filters, which shows as bias (set --sampler)\n",
-                 ref.info.path.c_str(), ref.file.sampler.c_str(), sampler_name(scene.settings.sampler));
+  // Jitter and Sobol average the pixel's box; grid takes its 16 fixed points.
+  auto filter = [](const std::string& sampler) { return sampler == "grid" ? "grid" : "box"; };
+  for (const std::string& sampler : samplers)
+    if (!ref.file.sampler.empty() && std::string(filter(ref.file.sampler)) != filter(sampler))
+      std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but renders use %s: the two "
+                           "converge to different pixel filters, which shows as bias (set --sampler)\n",
+                   ref.info.path.c_str(), ref.file.sampler.c_str(), sampler.c_str());
   const std::optional<uint64_t> bounces = ref.file.max_bounces;
   if (bounces && *bounces != uint64_t(scene.settings.max_bounces))
     std::fprintf(stderr, "clpt: warning: --reference %s has max_bounces %llu but the renders %d: the "
@@ -165,6 +170,7 @@ std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
   for (const std::string& p : o.precisions)
     for (const std::string& e : o.estimators)
       for (const std::string& f : o.forms)
+        for (const std::string& sampler : o.samplers.size() > 1 ? o.samplers : std::vector<std::string>{""})
         for (const std::string& spec : o.devices) {
           const DeviceInfo& device = select_device(all, spec);
           Combination c;
@@ -172,6 +178,7 @@ std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
           c.estimator = *parse_estimator(e);
           c.form = f == "auto" ? default_form_for(device)
                                : f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
+          c.sampler = sampler;
           c.device_spec = spec;
           c.device_index = device.index;
           c.device_name = device.name;
@@ -188,6 +195,7 @@ TradeoffRun render_run(const Scene& scene, const Combination& c, double budget_s
   request.launch_target_s = launch_target_s;
   request.scene = scene;
   request.scene.settings.estimator = estimator_name(c.estimator);
+  if (!c.sampler.empty()) request.scene.settings.sampler = sampler_from_name(c.sampler).value();  // checked
   request.device = std::to_string(c.device_index);  // resolved once: the same device every run
   request.precision = c.precision;
   request.form = c.form;
@@ -218,6 +226,10 @@ TradeoffRun render_run(const Scene& scene, const Combination& c, double budget_s
 
 // The smallest sample count the scene's sampler takes (the grid sampler works in 4x4 cells).
 uint64_t sampler_granularity(const Scene& scene) { return scene.settings.sampler == Sampler::Grid ? 16 : 1; }
+// The same for a combination, whose sampler may be its own (--sampler with several).
+uint64_t sampler_granularity(const Scene& scene, const Combination& c) {
+  return c.sampler.empty() ? sampler_granularity(scene) : c.sampler == "grid" ? 16 : 1;
+}
 
 void apply_overrides(const TradeoffOptions& o, Scene& scene) {
   RenderSettings& s = scene.settings;
@@ -225,7 +237,7 @@ void apply_overrides(const TradeoffOptions& o, Scene& scene) {
   if (o.height) s.height = *o.height;
   if (o.max_bounces) s.max_bounces = *o.max_bounces;
   if (o.rr_from) s.rr_from = *o.rr_from;
-  if (o.sampler) s.sampler = sampler_from_name(*o.sampler).value();  // CLI11 checked the name
+  if (o.samplers.size() == 1) s.sampler = sampler_from_name(o.samplers.front()).value();  // CLI11 checked it
   s.spp = int64_t(sampler_granularity(scene));  // budget runs are bounded by time, not by this
   check_scene_limits(scene, {o.width || o.height, false, o.max_bounces.has_value()});
 }
@@ -278,12 +290,16 @@ int run(const TradeoffOptions& o) {
     scene.settings.height = reference_file.image.height;
   }
   apply_overrides(o, scene);
-  if (target_from && target_from->spp % sampler_granularity(scene) != 0)
-    throw Error(ExitCode::Usage, "--target-from " + o.target_from + ": the scene's grid sampler needs a "
+  // --target-from renders with the first combination's sampler.
+  const bool target_sampler_is_grid = o.samplers.size() > 1 ? o.samplers.front() == "grid"
+                                                            : scene.settings.sampler == Sampler::Grid;
+  if (target_from && target_sampler_is_grid && target_from->spp % 16 != 0)
+    throw Error(ExitCode::Usage, "--target-from " + o.target_from + ": the grid sampler needs a "
                                  "multiple of 16 samples per pixel");
   const LoadedReference ref =
       load_reference(o.reference_path, std::move(reference_file), scene.settings.width, scene.settings.height);
-  warn_about_mismatches(ref, scene);
+  warn_about_mismatches(ref, scene, o.samplers.size() > 1 ? o.samplers
+                                                          : std::vector<std::string>{sampler_name(scene.settings.sampler)});
   bool seed_moved = false;
   scene.settings.seed = choose_seed(o, scene, ref, seed_moved);
   TradeoffResult result;
@@ -308,7 +324,7 @@ int run(const TradeoffOptions& o) {
   // otherwise land in the first budget's time.
   auto warm_up = [&](const Combination& c) {
     if (o.no_warmup || !warmed.insert(c.label()).second) return;
-    render_run(scene, c, 0, sampler_granularity(scene), launch_s, ref.image, interrupted);
+    render_run(scene, c, 0, sampler_granularity(scene, c), launch_s, ref.image, interrupted);
   };
   for (const Combination& c : result.combinations) {
     warm_up(c);
@@ -347,7 +363,7 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "tradeoff",
       "Speed against accuracy: RMSE against a reference, split into noise and bias, versus render time, "
-      "for each combination of precision x estimator x form x device");
+      "for each combination of precision x estimator x form x sampler x device");
   cmd->add_option("scene", o->scene_path, "Scene file (TOML)")->required();
   cmd->add_option("--reference", o->reference_path,
                   "Converged EXR with variance channels, e.g. from `clpt render --precision double --spp 4096`; "
@@ -383,9 +399,10 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--rr-from", o->rr_from, "Russian roulette from this bounce on (default: the scene's, none)")
       ->check(CLI::Range(0, 1000));
-  cmd->add_option("--sampler", o->sampler,
-                  "jitter, grid or sobol (default: the scene's; the reference's, for no bias)")
-      ->check(CLI::IsMember(sampler_names()));
+  cmd->add_option("--sampler", o->samplers,
+                  "jitter, grid or sobol (default: the scene's; the reference's, for no bias); several, "
+                  "e.g. jitter,sobol: compared as a dimension (jitter and sobol converge to one image, grid to another)")
+      ->delimiter(',')->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's; never the reference's)");
   cmd->add_option("--launch-ms", o->launch_ms,
                   "Megakernel launch size target in ms, as for `clpt render --launch-ms` (0: one launch per pass)")

@@ -1,5 +1,8 @@
 #include "io/render_file.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "io/image_io.h"
@@ -22,6 +25,9 @@ constexpr const char* kSampler = "clpt:sampler";
 constexpr const char* kMaxBounces = "clpt:max_bounces";
 constexpr const char* kDroppedSamples = "clpt:dropped_samples";
 constexpr const char* kInterrupted = "clpt:interrupted";
+constexpr const char* kErrorEstimate = "clpt:error_estimate";
+constexpr const char* kTargetError = "clpt:target_error";
+constexpr const char* kStop = "clpt:stop";
 
 std::string text(const ImageMetadata& m, const char* key) {
   const auto it = m.find(key);
@@ -40,6 +46,23 @@ std::optional<T> number(const ImageMetadata& m, const char* key) {
   } catch (const std::exception&) {
     return std::nullopt;
   }
+}
+
+// A finite real number written in full precision (%.9g), or unset when the key is missing or
+// holds something else.
+std::string real_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+std::optional<double> real(const ImageMetadata& m, const char* key) {
+  const std::string s = text(m, key);
+  if (s.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
 }
 
 // Three named channels of `img`, 3 floats a pixel; a missing one is named in the error.
@@ -79,6 +102,9 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   put(kMaxBounces, info.max_bounces);
   put(kDroppedSamples, info.dropped_samples);
   if (info.interrupted) m[kInterrupted] = "1";
+  if (info.error_estimate) m[kErrorEstimate] = real_text(*info.error_estimate);
+  if (info.target_error) m[kTargetError] = real_text(*info.target_error);
+  if (!info.stop.empty()) m[kStop] = info.stop;
   return m;
 }
 
@@ -97,6 +123,9 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.max_bounces = number<uint64_t>(m, kMaxBounces);
   info.dropped_samples = number<uint64_t>(m, kDroppedSamples);
   info.interrupted = text(m, kInterrupted) == "1";
+  info.error_estimate = real(m, kErrorEstimate);
+  info.target_error = real(m, kTargetError);
+  info.stop = text(m, kStop);
   return info;
 }
 

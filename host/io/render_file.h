@@ -34,6 +34,12 @@ struct RenderFileInfo {
   std::optional<uint64_t> max_bounces;  // clpt:max_bounces
   std::optional<uint64_t> dropped_samples;  // clpt:dropped_samples, NaN/Inf samples left out
   bool interrupted = false;             // clpt:interrupted = 1: spp counts the finished passes only
+  // clpt:error_estimate, clpt's estimate of the image's relative RMSE against the converged image
+  // (the upper estimate of render/error_estimate.h, what --target-error compares); unset when no
+  // estimate exists (one pass).
+  std::optional<double> error_estimate;
+  std::optional<double> target_error;   // clpt:target_error, the --target-error asked for
+  std::string stop;                     // clpt:stop: sample count | time limit | target error
 };
 
 ImageMetadata render_metadata(const RenderFileInfo& info);

@@ -92,9 +92,9 @@ void expect_field(const std::string& path, const char* field, const T& stored, c
 
 // Compares every identifying field of the stored header with the render's, in a fixed order.
 void check_matches(const std::string& path, const Header& stored, const Header& wanted) {
-  if (stored.version != kCheckpointVersion)
+  if (stored.version < kOldestCheckpointVersion || stored.version > kCheckpointVersion)
     fail(path, "checkpoint version " + std::to_string(stored.version) + " is not supported (this clpt reads " +
-                   std::to_string(kCheckpointVersion) + ")");
+                   std::to_string(kOldestCheckpointVersion) + " to " + std::to_string(kCheckpointVersion) + ")");
   const std::string stored_hash(stored.scene_hash, kHashChars), wanted_hash(wanted.scene_hash, kHashChars);
   if (stored_hash != wanted_hash)
     fail(path, "the checkpoint's scene (hash " + std::string(stored_hash.c_str()) +
@@ -119,6 +119,9 @@ void save_checkpoint(const std::string& path, const Scene& scene, const Film& fi
     put_doubles(out, film.sums());
     put_doubles(out, film.sums_of_squares());
     put_doubles(out, film.valid_counts());
+    put(out, film.half_samples_per_pixel(1));
+    put_doubles(out, film.half1_sums());
+    put_doubles(out, film.half1_valid_counts());
     if (!out.flush()) {
       std::remove(tmp.c_str());
       throw Error(ExitCode::OutputError, path + ": cannot write checkpoint: write failed");
@@ -138,12 +141,25 @@ Film load_checkpoint(const std::string& path, const Scene& scene) {
   std::vector<double> sum = get_doubles(in, pixels * 3);
   std::vector<double> sum_sq = get_doubles(in, pixels * 3);
   std::vector<double> valid = get_doubles(in, pixels);
+  uint64_t half1_spp = 0;
+  std::vector<double> half1_sum, half1_valid;
+  if (stored.version >= 2) {
+    get(in, half1_spp);
+    half1_sum = get_doubles(in, pixels * 3);
+    half1_valid = get_doubles(in, pixels);
+  }
   if (!in || in.peek() != std::char_traits<char>::eof())
     fail(path, "the checkpoint is truncated or has trailing bytes");
   if (stored.spp > kMaxSpp) fail(path, "the checkpoint's spp " + std::to_string(stored.spp) + " is out of range");
   const Film::Totals totals{stored.spp, stored.total_samples, stored.total_segments, stored.dropped};
-  return Film::restore(int(stored.width), int(stored.height), std::move(sum), std::move(sum_sq),
-                       std::move(valid), totals);
+  Film film = Film::restore(int(stored.width), int(stored.height), std::move(sum), std::move(sum_sq),
+                            std::move(valid), totals);
+  if (stored.version < 2) return film;
+  if (half1_spp > stored.spp)
+    fail(path, "the checkpoint's half-film spp " + std::to_string(half1_spp) + " exceeds its spp " +
+                   std::to_string(stored.spp));
+  film.restore_halves(std::move(half1_sum), std::move(half1_valid), half1_spp);
+  return film;
 }
 
 }  // namespace clpt

@@ -2,11 +2,16 @@
 // continue it. A small binary format of clpt's own (no OpenImageIO, so the OIIO-free build has
 // it too), in the host's byte order (little-endian on every supported host), written atomically:
 //
-//   "CLPTCKPT" (8 bytes), u32 version (1), u32 width, u32 height, u64 spp done, u64 seed,
+//   "CLPTCKPT" (8 bytes), u32 version (2), u32 width, u32 height, u64 spp done, u64 seed,
 //   scene hash (16 hex characters: Scene::file_hash), u32 sampler (0 jitter, 1 grid, 2 sobol),
 //   u32 max_bounces, u64 total samples, u64 total segments, u64 dropped samples,
 //   then f64 sums (3 per pixel, RGB), f64 sums of squares (3 per pixel), f64 valid counts (1 per
-//   pixel), pixels row-major with row 0 at the top.
+//   pixel), pixels row-major with row 0 at the top; version 2 then adds the half-film of
+//   render/film.h: u64 samples per pixel of half 1, f64 half-1 sums (3 per pixel), f64 half-1
+//   valid counts (1 per pixel).
+//
+// Version 1 files (before the half-films) are still read: their samples all count as half 0, and
+// the resumed render fills half 1 first (error_estimate.h needs both).
 //
 // A resumed render draws the samples an uninterrupted one would (the RNG is keyed by seed,
 // pixel and sample index), so only the float rounding of pass sums can differ.
@@ -19,7 +24,8 @@
 
 namespace clpt {
 
-constexpr uint32_t kCheckpointVersion = 1;
+constexpr uint32_t kCheckpointVersion = 2;
+constexpr uint32_t kOldestCheckpointVersion = 1;  // still read
 
 // Writes `film` (between passes) and what identifies the render to `path` atomically.
 // Throws Error(OutputError) naming the file.

@@ -12,9 +12,13 @@ Film::Film(int width, int height)
       height_(height),
       sum_(size_t(width) * height * 3, 0.0),
       sum_sq_(size_t(width) * height * 3, 0.0),
-      valid_(size_t(width) * height, 0.0) {}
+      valid_(size_t(width) * height, 0.0),
+      half1_sum_(size_t(width) * height * 3, 0.0),
+      half1_valid_(size_t(width) * height, 0.0) {}
 
 void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples) {
+  if (pending_pixels_ == 0) pending_half_ = next_half();  // a new pass: all of it goes to one half
+  const bool to_half1 = pending_half_ == 1;
   for (size_t i = 0; i < pass.size(); ++i) {
     const GpuPixelPass& p = pass[i];
     const size_t pixel = pixel_begin + i;
@@ -23,6 +27,10 @@ void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, u
       sum_sq_[pixel * 3 + c] += p.sum_sq[c];
     }
     valid_[pixel] += p.valid_samples;
+    if (to_half1) {
+      for (int c = 0; c < 3; ++c) half1_sum_[pixel * 3 + c] += p.sum[c];
+      half1_valid_[pixel] += p.valid_samples;
+    }
     total_segments_ += p.segments;
     dropped_samples_ += samples - static_cast<uint64_t>(p.valid_samples);
   }
@@ -39,6 +47,7 @@ void Film::track_pass_coverage(size_t pixels, uint32_t samples) {
   if (pending_pixels_ > pixel_count()) throw std::logic_error("Film::add_pass: pass covers too many pixels");
   if (pending_pixels_ == pixel_count()) {
     samples_per_pixel_ += samples;
+    half_spp_[pending_half_] += samples;
     pending_pixels_ = 0;
   }
 }
@@ -63,7 +72,20 @@ Film Film::restore(int width, int height, std::vector<double> sum, std::vector<d
   film.total_samples_ = totals.total_samples;
   film.total_segments_ = totals.total_segments;
   film.dropped_samples_ = totals.dropped_samples;
+  film.half1_sum_.assign(pixels * 3, 0.0);
+  film.half1_valid_.assign(pixels, 0.0);
+  film.half_spp_[0] = totals.samples_per_pixel;
+  film.half_spp_[1] = 0;
   return film;
+}
+
+void Film::restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp) {
+  if (half1_sum.size() != sum_.size() || half1_valid.size() != valid_.size() || half1_spp > samples_per_pixel_)
+    throw std::invalid_argument("Film::restore_halves: half-film does not match the film");
+  half1_sum_ = std::move(half1_sum);
+  half1_valid_ = std::move(half1_valid);
+  half_spp_[1] = half1_spp;
+  half_spp_[0] = samples_per_pixel_ - half1_spp;
 }
 
 std::vector<float> Film::mean_rgb() const {

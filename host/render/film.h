@@ -1,6 +1,8 @@
 // The host film: per-pixel sums of sample radiance and of its square, in double, added pass by
 // pass from the device's float pass statistics. It yields the pixel mean and the variance of
-// that mean, per channel.
+// that mean, per channel. Every pass also goes, whole, into one of two half-films (the half with
+// fewer samples per pixel; half 0 on a tie), whose difference is an unbiased measure of the
+// image's error whatever the sampler's stratification (render/error_estimate.h).
 #pragma once
 
 #include <cstddef>
@@ -52,6 +54,16 @@ class Film {
   // Samples dropped because their radiance had a NaN or Inf channel.
   uint64_t dropped_samples() const { return dropped_samples_; }
 
+  // The two half-films. Half 1's sums and valid counts are stored; half 0 is the whole film less
+  // half 1. half_samples_per_pixel(h): samples per pixel of the whole passes added to half h.
+  // Half 1's samples have indices from 2^31 (pass_schedule.h).
+  // next_half(): the half the next pass goes to (fewer samples; 0 on a tie), fixed by the film's
+  // own state, so every device and every resumed render agrees on it.
+  uint64_t half_samples_per_pixel(int half) const { return half_spp_[half & 1]; }
+  int next_half() const { return half_spp_[1] < half_spp_[0] ? 1 : 0; }
+  const std::vector<double>& half1_sums() const { return half1_sum_; }
+  const std::vector<double>& half1_valid_counts() const { return half1_valid_; }
+
   // The accumulated state, for checkpoints (render/checkpoint.h). Sums are RGB interleaved per
   // pixel; valid counts one per pixel.
   struct Totals {
@@ -65,6 +77,11 @@ class Film {
   // not match width x height.
   static Film restore(int width, int height, std::vector<double> sum, std::vector<double> sum_sq,
                       std::vector<double> valid, const Totals& totals);
+  // The half-films of a restored film: half 1's sums (3 per pixel) and valid counts, and its
+  // samples per pixel (half 0 holds the rest). A film restored without them (a version-1
+  // checkpoint) has everything in half 0, and the next passes go to half 1 until it catches up.
+  // Throws std::invalid_argument on sizes that do not match, or half1_spp > samples_per_pixel().
+  void restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp);
 
  private:
   // Advances samples_per_pixel_ once the current pass has covered every pixel.
@@ -74,12 +91,16 @@ class Film {
   std::vector<double> sum_;     // 3 per pixel
   std::vector<double> sum_sq_;  // 3 per pixel
   std::vector<double> valid_;   // valid samples per pixel
+  std::vector<double> half1_sum_;    // 3 per pixel: sums of the passes of half 1
+  std::vector<double> half1_valid_;  // valid samples per pixel in half 1
+  uint64_t half_spp_[2] = {0, 0};    // samples per pixel of each half's whole passes
   uint64_t samples_per_pixel_ = 0;
   uint64_t total_samples_ = 0;
   uint64_t total_segments_ = 0;
   uint64_t dropped_samples_ = 0;
   size_t pending_pixels_ = 0;     // pixels of the current pass added so far
   uint32_t pending_samples_ = 0;  // samples per pixel of the current pass
+  int pending_half_ = 0;          // the half the current pass goes to
 };
 
 }  // namespace clpt

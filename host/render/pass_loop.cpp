@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/device_pool.h"
+#include "render/error_estimate.h"
 #include "render/limits.h"
 #include "render/progress.h"
 #include "util/clock.h"
@@ -25,37 +26,18 @@ bool interrupted(const PassLoopOptions& options) {
   return options.interrupt && options.interrupt->load(std::memory_order_relaxed);
 }
 
-// What the coordinator knows when it decides the next pass.
-struct LoopState {
-  int passes = 0;
-  double elapsed_s = 0;
-  double rate = 0;  // samples per pixel per second of the last pass (0: none yet)
-};
-
-// The next pass, or the stop: the sample count reached, an interrupt (of any rank), the time
-// budget spent. Decided by the coordinator only.
+// The next pass, or the stop, decided by the coordinator only: an interrupt (of any rank) first,
+// then the schedule (pass_schedule.h: the sample count, the time budget, the target error).
 PassDecision decide_next_pass(const Film& film, const PassTracer& tracer, const GpuRenderParams& params,
-                              const PassLoopOptions& options, const LoopState& state) {
+                              const PassLoopOptions& options, PassMeasurements& measured,
+                              PassScheduleState& schedule) {
   PassDecision d;
-  const uint64_t stop_spp = options.target_spp ? options.target_spp : kMaxSpp;
-  const uint32_t g = options.granularity;
-  if (film.samples_per_pixel() >= stop_spp) {
-    d.stop = true;
-    return d;
-  }
   if (interrupted(options) || tracer.others_interrupted()) {
-    d.stop = d.interrupted = true;
+    d.interrupted = true;
     return d;
   }
-  if (options.time_limit_s > 0 && state.passes > 0 && state.elapsed_s >= options.time_limit_s) {
-    d.stop = true;
-    return d;
-  }
-  double pass_s = options.pass_target_s;
-  if (options.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, options.time_limit_s - state.elapsed_s));
-  d.sample_begin = static_cast<uint32_t>(film.samples_per_pixel());
-  d.samples = std::min(next_pass_samples(film.samples_per_pixel(), stop_spp, state.rate, pass_s, g),
-                       std::max(g, tracer.max_samples_per_pass(params.pixel_count) / g * g));
+  measured.max_samples_per_pass = tracer.max_samples_per_pass(params.pixel_count);
+  d.next = plan_next_pass(film, options.request, measured, schedule);
   return d;
 }
 
@@ -69,15 +51,6 @@ uint32_t DevicePoolTracer::max_samples_per_pass(uint32_t pixel_count) const {
 
 std::vector<std::string> DevicePoolTracer::take_notices() { return pool_.take_notices(); }
 
-uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
-                           double target_s, uint32_t granularity) {
-  double want = samples_per_pixel_per_s > 0 ? samples_per_pixel_per_s * target_s : granularity;
-  want = std::clamp(want, double(granularity), double(kMaxSamplesPerPass));
-  uint64_t n = uint64_t(want) / granularity * granularity;
-  if (target > 0) n = std::min<uint64_t>(n, target - done);
-  return static_cast<uint32_t>(std::max<uint64_t>(n, 1));
-}
-
 PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Film& film,
                           const PassLoopOptions& options) {
   PassLoopResult result;
@@ -86,34 +59,50 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
   const Clock::time_point t0 = Clock::now();
   Clock::time_point last_checkpoint = t0;
   const uint64_t samples_before = film.total_samples();  // a resumed film already holds some
+  const uint64_t spp_before = film.samples_per_pixel();
   GpuRenderParams pass = params;
-  LoopState state;
+  PassMeasurements measured;
+  PassScheduleState schedule;
   for (;;) {
     print_notices(tracer, progress);
-    state.passes = result.passes;
-    state.elapsed_s = seconds_since(t0);
-    PassDecision next;
-    if (decides) next = decide_next_pass(film, tracer, params, options, state);
-    tracer.share(next);
-    if (next.stop) {
-      result.interrupted = next.interrupted;
+    measured.elapsed_s = seconds_since(t0);
+    PassDecision decision;
+    if (decides) decision = decide_next_pass(film, tracer, params, options, measured, schedule);
+    tracer.share(decision);
+    result.estimate = decision.next.estimate;
+    if (decision.stop()) {
+      result.interrupted = decision.interrupted;
+      result.stop = decision.next.stop;
       break;
     }
-    pass.sample_begin = static_cast<clpt_u32>(next.sample_begin);
-    pass.samples_per_pass = next.samples;
+    pass.sample_begin = decision.next.sample_begin;
+    pass.samples_per_pass = decision.next.samples;
     const Clock::time_point pass_start = Clock::now();
     tracer.trace(pass, film);
-    state.rate = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    measured.samples_per_pixel_per_s = pass.samples_per_pass / std::max(1e-9, seconds_since(pass_start));
+    ++measured.passes;
     ++result.passes;
     if (!decides) continue;
-    progress.update(result.passes, film.samples_per_pixel(), options.target_spp,
-                    double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0)),
-                    seconds_since(t0), options.time_limit_s);
+    ProgressState shown;
+    shown.passes = result.passes;
+    shown.spp_done = film.samples_per_pixel();
+    shown.spp_target = options.request.target_spp;
+    shown.samples_per_s = double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0));
+    shown.elapsed_s = seconds_since(t0);
+    shown.time_limit_s = options.request.time_limit_s;
+    shown.spp_this_run = film.samples_per_pixel() - spp_before;
+    if (options.request.target_error > 0) {
+      shown.target_error = options.request.target_error;
+      shown.estimate = estimate_error(film);
+      shown.predicted_spp = predicted_spp_for(shown.estimate, film.samples_per_pixel(), shown.target_error);
+    }
+    progress.update(shown);
     if (options.checkpoint && seconds_since(last_checkpoint) >= options.checkpoint_every_s) {
       options.checkpoint(film);
       last_checkpoint = Clock::now();
     }
   }
+  if (result.interrupted && decides) result.estimate = estimate_error(film);
   print_notices(tracer, progress);
   progress.finish();
   return result;

@@ -1,10 +1,11 @@
-// The pass loop of a render: passes of whole sample counts over the image until the sample count
-// or the time budget is reached, or an interrupt is requested. Each pass is traced by a
-// PassTracer: the devices of this process's DevicePool, in launches over pixel ranges (on the
-// megakernel each launch is sized from the measured throughput to take about a target time, so no
-// launch runs into a display GPU's watchdog, docs/numerics.md "Watchdogs"), or those of every rank
-// of an MPI job (rank_pass.h). The next pass is decided in one place, decide_next_pass, by the
-// coordinator alone (the process, or rank 0), and every rank runs the decision it is sent.
+// The pass loop of a render: passes of whole sample counts over the image until the sample count,
+// the time budget or the target error is reached (what each pass is: pass_schedule.h), or an
+// interrupt is requested. Each pass is traced by a PassTracer: the devices of this process's
+// DevicePool, in launches over pixel ranges (on the megakernel each launch is sized from the
+// measured throughput to take about a target time, so no launch runs into a display GPU's
+// watchdog, docs/numerics.md "Watchdogs"), or those of every rank of an MPI job (rank_pass.h).
+// The next pass is decided in one place, plan_next_pass, by the coordinator alone (the process,
+// or rank 0), and every rank runs the decision it is sent.
 #pragma once
 
 #include <atomic>
@@ -14,14 +15,12 @@
 #include <vector>
 
 #include "render/film.h"
+#include "render/pass_schedule.h"
 
 namespace clpt {
 
 struct PassLoopOptions {
-  uint64_t target_spp = 0;       // 0: until the time limit (at most kMaxSpp)
-  double time_limit_s = 0;       // 0: none
-  double pass_target_s = 0.5;    // wall time per pass, from the measured rate
-  uint32_t granularity = 1;      // samples per pass are a multiple of this (sampler period)
+  PassRequest request;           // stopping rule (spp, time, target error) and pass sizing
   // Set asynchronously (a signal handler); checked between passes: the running pass finishes.
   const std::atomic<bool>* interrupt = nullptr;
   // Called between passes, at most every checkpoint_every_s seconds (none when empty).
@@ -34,16 +33,16 @@ struct PassLoopOptions {
 struct PassLoopResult {
   int passes = 0;
   bool interrupted = false;  // stopped early: the interrupt was set before the target was reached
+  StopReason stop = StopReason::None;  // what ended it (None when interrupted)
+  ErrorEstimate estimate;              // of the final film
 };
 
-// What the next pass is, as the coordinator decided it and every rank runs it. The one place of a
-// render where passes are decided: a stopping rule (a target error, issue 16) or a per-pixel
-// sample allocation belongs here, sent with the decision (rank_pass.cpp encodes it).
+// What the next pass is, as the coordinator decided it and every rank runs it: the schedule's
+// answer (pass_schedule.h), or an interrupt. Plain bytes, broadcast as they are (rank_pass.cpp).
 struct PassDecision {
-  bool stop = false;         // no more passes
-  bool interrupted = false;  // stop: because of an interrupt before the target was reached
-  uint32_t sample_begin = 0; // the pass's first sample index (every pixel)
-  uint32_t samples = 0;      // samples per pixel of the pass
+  NextPass next;             // next.stop != None: the sample count, time or target error is reached
+  bool interrupted = false;  // an interrupt (of any rank) came before the target was reached
+  bool stop() const { return interrupted || next.stop != StopReason::None; }
 };
 
 // How the passes are traced: by this process's devices (DevicePoolTracer), or by every rank of an
@@ -90,10 +89,5 @@ class DevicePoolTracer final : public PassTracer {
 // throws what the tracer throws.
 PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Film& film,
                           const PassLoopOptions& options);
-
-// Samples per pass: the first pass is one sampler period, later passes aim at target_s seconds
-// from the measured rate, capped by what is left and by kMaxSamplesPerPass (limits.h).
-uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
-                           double target_s, uint32_t granularity);
 
 }  // namespace clpt

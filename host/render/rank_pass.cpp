@@ -44,6 +44,7 @@ std::vector<std::string> render_identity(const RenderRequest& request, const Ren
       "image: " + std::to_string(plan.width) + "x" + std::to_string(plan.height),
       "samples per pixel: " + std::to_string(plan.target_spp),
       "time limit (s): " + std::to_string(plan.time_limit_s),
+      "target error: " + std::to_string(plan.target_error),
       "seed: " + std::to_string(s.seed),
       std::string("sampler: ") + sampler_name(s.sampler),
       "max bounces: " + std::to_string(s.max_bounces),
@@ -170,7 +171,7 @@ void RankPassTracer::share(PassDecision& d) {
   group_.broadcast(out.bytes());
   ByteReader in(out.bytes());
   d = in.get<PassDecision>();
-  if (d.stop || !faults_.exits_at_pass(++passes_started_)) return;
+  if (d.stop() || !faults_.exits_at_pass(++passes_started_)) return;
   std::fprintf(stderr, "clpt: %s: exits at pass %llu, as CLPT_INJECT_FAULT asks\n",
                rank_label(group_, group_.rank(), mine_.host).c_str(), (unsigned long long)passes_started_);
   std::fflush(stderr);

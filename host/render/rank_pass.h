@@ -1,5 +1,5 @@
 // A render shared by the ranks of an MPI job (docs/mpi.md): the ranks agree on what they render,
-// then trace every pass together. Rank 0 decides each pass (pass_loop.cpp, decide_next_pass) and
+// then trace every pass together. Rank 0 decides each pass (pass_schedule.h, plan_next_pass) and
 // splits its pixels into one consecutive part per rank, sized by each rank's measured throughput
 // of its last part (split_pixels_by_weight), so ranks of different speed finish a pass together.
 // Each rank traces its part on its own devices (DevicePool::run_pass_part) and sends the part's

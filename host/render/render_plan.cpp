@@ -82,6 +82,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   plan.image_pixels = uint32_t(s.width) * uint32_t(s.height);
   plan.target_spp = request.spp_given ? uint64_t(s.spp) : 0;
   plan.time_limit_s = request.time_limit_s;
+  plan.target_error = request.target_error;
   plan.sampler_granularity = s.sampler == Sampler::Grid ? 16u : 1u;
   plan.precision = request.precision;
   plan.use_kernel_cache = request.use_kernel_cache;
@@ -124,6 +125,8 @@ std::string explain_plan(const RenderPlan& plan) {
   o << "render plan: " << plan.width << "x" << plan.height << ", "
     << (plan.target_spp ? std::to_string(plan.target_spp) + " spp" : std::string("no sample limit"))
     << (plan.time_limit_s > 0 ? ", at most " + std::to_string(plan.time_limit_s) + " s" : std::string())
+    << (plan.target_error > 0 ? ", until the estimated relative error is at most " +
+                                    std::to_string(plan.target_error) : std::string())
     << ", passes in multiples of " << plan.sampler_granularity << " sample(s) per pixel"
     << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "") << ", kernel cache "
     << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";

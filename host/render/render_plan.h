@@ -4,7 +4,7 @@
 // `clpt render --explain` prints it. Per device: execution form and megakernel loop, the kernel's
 // features and build options (kernels/kernel_options.h decides them), work-group and path-pool
 // sizes, how launches are sized, and the device memory the render needs. For the render: image,
-// stopping rule and sampler granularity.
+// stopping rule (spp, time, target error) and sampler granularity.
 #pragma once
 
 #include <cstdint>
@@ -42,6 +42,7 @@ struct RenderPlan {
   uint32_t image_pixels = 0;
   uint64_t target_spp = 0;       // 0: only the time limit stops the render
   double time_limit_s = 0;       // 0: none
+  double target_error = 0;       // stop at this estimated relative RMSE (render/error_estimate.h); 0: none
   uint32_t sampler_granularity = 1;  // samples per pass are a multiple of this (grid: 16)
   Precision precision = Precision::Robust;
   bool use_kernel_cache = true;

@@ -24,7 +24,8 @@ struct RenderRequest {
   Scene scene;               // settings already merged with command-line overrides
   std::string device = "";   // --device value ("" = best; "all" or a comma list: several devices)
   double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
-  bool spp_given = true;     // false when only --time bounds the render
+  double target_error = 0;   // --target-error: relative RMSE to stop at (render/error_estimate.h); 0 = none
+  bool spp_given = true;     // false when only --time or --target-error bound the render
   bool show_progress = false;
   Precision precision = Precision::Robust;  // --precision
   std::optional<Intersection> intersection;  // --intersection; unset: the preset's

@@ -12,9 +12,10 @@ namespace {
 
 PassLoopOptions pass_loop_options(const RenderPlan& plan, const RenderRequest& request) {
   PassLoopOptions o;
-  o.target_spp = plan.target_spp;
-  o.time_limit_s = plan.time_limit_s;
-  o.granularity = plan.sampler_granularity;
+  o.request.target_spp = plan.target_spp;
+  o.request.time_limit_s = plan.time_limit_s;
+  o.request.target_error = plan.target_error;
+  o.request.granularity = plan.sampler_granularity;
   o.interrupt = request.interrupt;
   o.checkpoint = request.checkpoint;
   o.checkpoint_every_s = request.checkpoint_every_s;
@@ -90,6 +91,8 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   report.render_seconds = seconds_since(t0);
   report.passes = passes.passes;
   report.interrupted = passes.interrupted;
+  report.stop = passes.stop;
+  report.estimate = passes.estimate;
   report.spp = film.samples_per_pixel();
   report.paths = film.total_samples() - before.total_samples;
   report.segments = film.total_segments() - before.total_segments;

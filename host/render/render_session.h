@@ -39,6 +39,8 @@ struct RenderReport {
   std::shared_ptr<KernelCache> kernel_cache;  // the one used (null when off); hits() > 0: loaded
   uint64_t launches = 0;     // kernel launches of the passes (megakernel: pixel-range launches)
   bool interrupted = false;  // stopped early: `interrupt` was set before the target was reached
+  StopReason stop = StopReason::None;  // what ended the passes (None when interrupted)
+  ErrorEstimate estimate;              // clpt's estimate of the final film's error (error_estimate.h)
   std::vector<DeviceShare> devices;  // every device of --device, in its order (failed ones too)
   // An MPI job: every rank's part, at rank 0 (empty on the other ranks and in a single process).
   // The other fields are the job's at rank 0 (paths, spp, seconds) and this rank's devices.

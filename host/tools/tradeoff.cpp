@@ -31,7 +31,8 @@ bool is_all_digits(const std::string& s) {
 
 std::string Combination::label() const {
   return std::string(precision_name(precision)) + "/" + estimator_name(estimator) + "/" +
-         execution_form_name(form) + "/dev" + std::to_string(device_index);
+         execution_form_name(form) + "/" + (sampler.empty() ? "" : sampler + "/") + "dev" +
+         std::to_string(device_index);
 }
 
 ErrorSplit split_error(const MeanVarianceImage& render, const MeanVarianceImage& reference) {

@@ -1,5 +1,5 @@
 // The measurements of `clpt tradeoff`: how the error of a render against a reference falls with
-// render time, for each combination of precision, estimator, execution form and device. Pure
+// render time, for each combination of precision, estimator, execution form, sampler and device. Pure
 // functions (no device, no files), so tests run them on synthetic images.
 //
 // Error model. x is a render's pixel-channel mean, r the reference's, both independent
@@ -31,7 +31,11 @@ struct Combination {
   std::string device_spec;  // as given to --device ("" = the default device)
   int device_index = 0;     // in `clpt devices`
   std::string device_name;
-  // "robust/book/megakernel/dev0": unique per combination, used in tables, CSV and the plot.
+  // --sampler with several samplers: this one's name ("jitter", "grid", "sobol"); empty: the
+  // scene's sampler, which is then not part of the label.
+  std::string sampler;
+  // "robust/book/megakernel/dev0" (with several samplers "robust/book/megakernel/sobol/dev0"):
+  // unique per combination, used in tables, CSV and the plot.
   std::string label() const;
 };
 

@@ -1,0 +1,104 @@
+// The one decision of what the next pass is (pass_schedule.h).
+#include "render/pass_schedule.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/limits.h"
+
+namespace clpt {
+namespace {
+
+uint64_t round_up(uint64_t n, uint64_t g) { return (n + g - 1) / g * g; }
+
+}  // namespace
+
+uint64_t check_ladder_at_or_above(uint64_t spp, uint32_t granularity) {
+  const uint64_t g = std::max<uint32_t>(granularity, 1);
+  uint64_t point = 2 * round_up(std::max<uint64_t>(8, g), g);
+  while (point < spp && point < kMaxSpp) point += 2 * round_up(std::max<uint64_t>(1, point / 16), g);
+  return std::min(point, kMaxSpp);
+}
+
+uint32_t next_pass_samples(uint64_t done, uint64_t target, double samples_per_pixel_per_s,
+                           double target_s, uint32_t granularity) {
+  double want = samples_per_pixel_per_s > 0 ? samples_per_pixel_per_s * target_s : granularity;
+  want = std::clamp(want, double(granularity), double(kMaxSamplesPerPass));
+  uint64_t n = uint64_t(want) / granularity * granularity;
+  if (target > 0) n = std::min<uint64_t>(n, target - done);
+  return static_cast<uint32_t>(std::max<uint64_t>(n, 1));
+}
+
+uint64_t predicted_spp_for(const ErrorEstimate& estimate, uint64_t spp, double target_error) {
+  if (!estimate.valid || !(target_error > 0)) return 0;
+  const double ratio = estimate.relative_rmse_upper / target_error;
+  return uint64_t(std::min(double(kMaxSpp), std::ceil(double(spp) * ratio * ratio)));
+}
+
+NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
+                        PassScheduleState& state) {
+  NextPass next;
+  const uint64_t spp = film.samples_per_pixel();
+  const uint64_t stop_spp = request.target_spp ? std::min(request.target_spp, kMaxSpp) : kMaxSpp;
+  const uint32_t g = std::max<uint32_t>(request.granularity, 1);
+  next.estimate = estimate_error(film);
+  next.half = film.next_half();
+  const uint64_t half_spp[2] = {film.half_samples_per_pixel(0), film.half_samples_per_pixel(1)};
+  next.sample_begin = static_cast<uint32_t>((uint64_t(next.half) << CLPT_SAMPLE_STREAM_BIT) + half_spp[next.half]);
+  const bool target_mode = request.target_error > 0;
+  if (target_mode) next.predicted_spp = predicted_spp_for(next.estimate, spp, request.target_error);
+
+  if (spp >= stop_spp) {
+    next.stop = StopReason::SampleCount;
+    return next;
+  }
+  if (request.time_limit_s > 0 && measured.passes > 0 && measured.elapsed_s >= request.time_limit_s) {
+    next.stop = StopReason::TimeLimit;
+    return next;
+  }
+  if (target_mode) {
+    if (state.next_check_spp == 0) state.next_check_spp = check_ladder_at_or_above(spp, g);
+    if (spp >= state.next_check_spp && half_spp[0] == half_spp[1]) {
+      if (next.estimate.valid && next.estimate.relative_rmse_upper <= request.target_error) {
+        next.stop = StopReason::TargetError;
+        return next;
+      }
+      // Jump towards the predicted count, a little short of it so the check lands near it, and at
+      // most by half the samples so far: an early estimate from few samples is noisy, and a jump
+      // too far cannot be undone (true error at the stop >= target / sqrt(1.5) from the jump alone).
+      const uint64_t aim = std::clamp<uint64_t>(uint64_t(0.95 * double(next.predicted_spp)), spp + 1, spp + spp / 2);
+      state.next_check_spp = check_ladder_at_or_above(aim, g);
+    }
+  }
+
+  // Pass size: about pass_target_s at the measured rate (less when the time budget ends sooner).
+  double pass_s = request.pass_target_s;
+  if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - measured.elapsed_s));
+  uint64_t n = next_pass_samples(spp, stop_spp, measured.samples_per_pixel_per_s, pass_s, g);
+  // The smaller half only catches up: at equal halves the estimate is exact (error_estimate.h).
+  if (half_spp[0] != half_spp[1]) n = std::min(n, std::max(half_spp[0], half_spp[1]) - half_spp[next.half]);
+  // At equal halves, half 0 takes at most its share (rounded up to the granularity) of what is
+  // left, so a render of S samples ends with halves of g ceil(S / 2g) and the rest whatever the
+  // pass sizes were: the samples drawn, and so the image, depend on S alone.
+  else n = std::min(n, round_up((stop_spp - spp + 1) / 2, g));
+  // Target error: each half reaches half the next check point.
+  if (target_mode && state.next_check_spp > spp && state.next_check_spp / 2 > half_spp[next.half])
+    n = std::min(n, state.next_check_spp / 2 - half_spp[next.half]);
+  const uint32_t device_limit = measured.max_samples_per_pass ? measured.max_samples_per_pass : kMaxSamplesPerPass;
+  n = std::min<uint64_t>(n, std::max(g, device_limit / g * g));
+  n = std::min(n, stop_spp - spp);
+  next.samples = static_cast<uint32_t>(std::max<uint64_t>(n, 1));
+  return next;
+}
+
+const char* stop_reason_name(StopReason reason) {
+  switch (reason) {
+    case StopReason::None: return "none";
+    case StopReason::SampleCount: return "sample count";
+    case StopReason::TimeLimit: return "time limit";
+    case StopReason::TargetError: return "target error";
+  }
+  return "?";
+}
+
+}  // namespace clpt

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# `clpt render --target-error` end to end:
+#  * it stops at the target: exit 0, the summary says so, the progress line shows the estimate
+#    and the target, and the EXR records clpt:error_estimate (<= the target), clpt:target_error
+#    and clpt:stop;
+#  * with --spp, whichever comes first: a small --spp stops at the sample count;
+#  * a checkpointed target render resumes (version-2 checkpoint with its half-films).
+#   target_error_cli.sh CLPT SOURCE_DIR WORK_DIR
+set -u
+clpt=$1 src=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+scene="$src/scenes/diffuse.toml"
+small=(--width 32 --height 24 --estimator nee --sampler jitter --seed 5)
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+meta() { oiiotool --info -v "$1" | grep "$2"; }
+
+# 1. Stops at the target.
+"$clpt" render "$scene" "${small[@]}" --target-error 0.2 --progress -o t.exr >out.txt 2>err.txt ||
+  fail "--target-error 0.2 exited $?: $(cat err.txt)"
+grep -q "stopped at the target error" out.txt || fail "summary lacks the stop: $(cat out.txt)"
+grep -q "target 20.00%" err.txt || fail "progress line lacks the target: $(cat err.txt)"
+grep -q "error [0-9.]*% (target" err.txt || fail "progress line lacks the estimate: $(cat err.txt)"
+estimate=$(meta t.exr 'clpt:error_estimate' | sed 's/.*: "\(.*\)"/\1/')
+python3 -c "import sys; e = float(sys.argv[1]); sys.exit(0 if 0 < e <= 0.2 else 1)" "$estimate" ||
+  fail "clpt:error_estimate '$estimate' is not in (0, 0.2]"
+meta t.exr 'clpt:target_error: "0.2"' >/dev/null || fail "t.exr lacks clpt:target_error 0.2"
+meta t.exr 'clpt:stop: "target error"' >/dev/null || fail "t.exr lacks clpt:stop \"target error\""
+
+# 2. With --spp, whichever comes first.
+"$clpt" render "$scene" "${small[@]}" --target-error 0.001 --spp 4 -q -o s.exr || fail "--spp 4 exited $?"
+meta s.exr 'clpt:spp: "4"' >/dev/null || fail "s.exr is not 4 spp"
+meta s.exr 'clpt:stop: "sample count"' >/dev/null || fail "s.exr lacks clpt:stop \"sample count\""
+
+# 3. A checkpoint of a target render resumes to a longer one.
+"$clpt" render "$scene" "${small[@]}" --spp 8 --checkpoint c.ckpt -q -o c.exr || fail "checkpointed render"
+"$clpt" render "$scene" "${small[@]}" --target-error 0.2 --resume c.ckpt -q -o r.exr || fail "resumed target render"
+meta r.exr 'clpt:stop: "target error"' >/dev/null || fail "the resumed render did not stop at the target"
+
+if [[ $failures -ne 0 ]]; then
+  echo "$failures target-error case(s) failed"
+  exit 1
+fi
+echo "ok: --target-error stops at the target, records it, and resumes"
