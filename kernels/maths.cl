@@ -11,8 +11,9 @@
  * on [-pi/4, pi/4] is accurate to about 2e-7 absolute and branch-free.
  *
  * Precision presets (host/kernels/kernel_options.cpp decides; README "Precision presets"):
- *   CLPT_PRECISION 0 fast:   real = float, built with -cl-unsafe-math-optimizations; native_* sin, cos
- *                            and powr; the cheaper surface-point intersection (intersect.cl)
+ *   CLPT_PRECISION 0 fast:   real = float, built with -cl-unsafe-math-optimizations; native_* sin and
+ *                            cos, the pow polynomial below; the cheaper surface-point intersection
+ *                            (intersect.cl)
  *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
  *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow
  * Buffers of the scene stay float (camera-relative, so their rounding is relative to distances
@@ -119,10 +120,10 @@ CLPT_INLINE Float2 unit_circle(float u) {
 
 /* u^a for u in [0, 1] and a > 0, to about 3e-7 relative: log2 from the exponent bits and an
  * atanh series, exp2 from a Taylor polynomial and the exponent bits. The library pow is a call
- * PoCL cannot vectorise and its exp2/log2 use 2-wide vectors internally, which stop the vectoriser. */
-#if CLPT_PRECISION == CLPT_PRECISION_FAST
-CLPT_INLINE float pow_unit(float u, float a) { return u <= 0.0f ? 0.0f : native_powr(u, a); }
-#elif CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+ * PoCL cannot vectorise and its exp2/log2 use 2-wide vectors internally, which stop the vectoriser;
+ * PoCL's native_powr likewise (the fast preset's Phong scenes ran 11x slower with it), so the fast
+ * preset uses this polynomial too. */
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 CLPT_INLINE real pow_unit(real u, real a) { return u <= 0.0 ? 0.0 : pow(u, a); }
 #else
 CLPT_INLINE float pow_unit(float u, float a) {
