@@ -6,13 +6,14 @@ CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
 
 # What each package is for is in README.md ("Dependencies").
 CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
-               libopenimageio-dev openimageio-tools libtomlplusplus-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
+               libopenimageio-dev openimageio-tools libtomlplusplus-dev libassimp-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
 # Tests: GoogleTest; python3 checks the JSON and CSV that bench, compare and tradeoff write;
 # Oclgrind is the second OpenCL implementation (label xdev); clang-14 with libclc-14 compiles the
 # kernels for NVIDIA (nvptx64) and AMD (amdgcn) targets (label gpucc).
 CLPT_TEST_PACKAGES=(libgtest-dev python3 oclgrind clang-14 libclc-14)
-# scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries).
-CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+# scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries; assimp's test models seed the
+# mesh-file fuzzer).
+CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev assimp-testmodels)
 
 clpt_log() { printf 'clpt: %s\n' "$*" >&2; }
 
@@ -36,6 +37,12 @@ clpt_install_missing() {
   clpt_log "installing missing packages: ${missing[*]}"
   "${sudo[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# clpt_generate_meshes: writes the generated mesh of scenes/torus-knot.toml if it is missing
+# (scripts/make_mesh_scene.py; python3 is in the base system of Debian 12 and in CLPT_TEST_PACKAGES).
+clpt_generate_meshes() {
+  [[ -f "$CLPT_ROOT/scenes/meshes/torus_knot.ply" ]] || python3 "$CLPT_ROOT/scripts/make_mesh_scene.py" >&2
 }
 
 # clpt_build [CMAKE_ARGS...]: configure (Release) and build everything in $CLPT_BUILD.

@@ -6,6 +6,7 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 clpt_install_missing "${CLPT_PACKAGES[@]}"
+clpt_generate_meshes
 clpt_build -DCLPT_BUILD_TESTS=OFF
 mkdir -p "$CLPT_ROOT/out"
 "$CLPT_BUILD/clpt" render "$CLPT_ROOT/scenes/diffuse.toml" -o "$CLPT_ROOT/out/diffuse.exr" "$@"
