@@ -5,7 +5,7 @@
 // MeshFileError is the normal outcome; anything else -- another exception, a crash, a sanitizer
 // report in clpt's code, or a result that breaks LocalMesh's contract -- is a finding.
 // assimp itself is Debian's uninstrumented build: coverage guides through clpt's code only, and
-// a crash inside assimp shows as a plain SEGV (README "Known library crashes").
+// a crash inside assimp shows as a plain SEGV (README "Known library crashes and leaks").
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
