@@ -73,6 +73,24 @@ std::string format_short(double v) {
   return buf;
 }
 
+// Terms 1 and 2 (and 8): the absolute error of a hit point found `distance` from the camera, for
+// geometry whose world coordinates (plus the camera's) are of size `world_size`.
+double hit_point_error(double u, double distance, double world_size) {
+  return 2 * u * distance + kDoubleRoundoff * world_size;
+}
+
+// What every estimate starts from: the preset's unit roundoff, the camera, the view distance L.
+struct ViewModel {
+  double u;
+  Vec3 camera;
+  double view_distance;
+};
+
+ViewModel view_model(const Scene& scene, Precision precision) {
+  return {device_unit_roundoff(precision), scene.camera.position,
+          length(sub(scene.camera.look_at, scene.camera.position))};
+}
+
 }  // namespace
 
 double device_unit_roundoff(Precision precision) {
@@ -99,9 +117,7 @@ double proven_relative_error(Precision precision) {
 }
 
 std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Precision precision) {
-  const double u = device_unit_roundoff(precision);
-  const Vec3& camera = scene.camera.position;
-  const double view_distance = length(sub(scene.camera.look_at, camera));
+  const auto [u, camera, view_distance] = view_model(scene, precision);
   std::vector<SpherePrecision> out;
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
@@ -110,8 +126,7 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
     p.distance_from_camera = length(sub(surface_frame(s, scene.camera.look_at).point, camera));
     p.feature_size = std::min(s.radius, view_distance);
     const double world_size = length(s.center) + s.radius + length(camera);
-    const double delta = 2 * u * p.distance_from_camera + kDoubleRoundoff * world_size;
-    p.relative_error = delta / p.feature_size;
+    p.relative_error = hit_point_error(u, p.distance_from_camera, world_size) / p.feature_size;
     if (precision == Precision::Fast) {
       const double d = p.distance_from_camera;
       const double cancellation = u * (d * d + 2 * s.radius * d) / (s.radius * p.feature_size);
@@ -123,14 +138,11 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
 }
 
 std::vector<TrianglePrecision> estimate_mesh_precision(const Scene& scene, Precision precision) {
-  const double u = device_unit_roundoff(precision);
-  const Vec3& camera = scene.camera.position;
-  const double view_distance = length(sub(scene.camera.look_at, camera));
+  const auto [u, camera, view_distance] = view_model(scene, precision);
   std::vector<TrianglePrecision> out;
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const TriangleMesh& mesh = scene.meshes[m];
-    TrianglePrecision worst;
-    worst.mesh = int(m);
+    TrianglePrecision worst{int(m), 0, 0, 0, 0};
     for (size_t t = 0; t < mesh.triangles.size(); ++t) {
       double distance = 0, edge = 0, world = 0;
       for (int k = 0; k < 3; ++k) {
@@ -141,7 +153,7 @@ std::vector<TrianglePrecision> estimate_mesh_precision(const Scene& scene, Preci
         world = std::max(world, length(a));
       }
       const double feature = std::min(edge, view_distance);
-      const double rho = (2 * u * distance + kDoubleRoundoff * (world + length(camera))) / feature;
+      const double rho = hit_point_error(u, distance, world + length(camera)) / feature;
       if (rho > worst.relative_error) worst = {int(m), t, rho, distance, feature};
     }
     out.push_back(worst);
