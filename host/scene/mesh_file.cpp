@@ -84,12 +84,22 @@ void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& 
   }
 }
 
+bool has_ply_end_header(std::string_view bytes) {
+  constexpr std::string_view kLine = "\nend_header";
+  for (size_t at = bytes.find(kLine); at != std::string_view::npos; at = bytes.find(kLine, at + 1)) {
+    const size_t after = at + kLine.size();
+    if (after == bytes.size() || std::isspace(static_cast<unsigned char>(bytes[after]))) return true;
+  }
+  return false;
+}
+
 // Inputs on which assimp 5.2 does not come back, refused before it sees them (found by
 // tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks").
 void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string& extension) {
   // A PLY header without its end_header line: assimp's PLY reader loops for minutes (or for
-  // ever) looking for it, even on a 200-byte file.
-  if (extension == "ply" && bytes.find("end_header") == std::string_view::npos)
+  // ever) looking for it, even on a 200-byte file. "end_header" elsewhere (in a comment) is not
+  // enough: it must start a line and end at whitespace or the end of the file.
+  if (extension == "ply" && !has_ply_end_header(bytes))
     throw MeshFileError("the PLY header has no 'end_header' line");
 }
 
