@@ -98,6 +98,9 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   EXPECT_THROW(parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n0\n", "ply"), MeshFileError);
   EXPECT_THROW(parse_mesh_file("ply\ncomment no end_header here\nelement vertex 1\nproperty float x\n0\n", "ply"),
                MeshFileError);
+  // A PLY header with bytes that are not ASCII text made assimp abort on an internal assertion.
+  EXPECT_THROW(parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 3\nproperty fl\xff\xffoat x\nend_header\n0\n1\n2\n", "ply"),
+               MeshFileError);
   EXPECT_THROW(mesh_file_extension("a.fbx"), MeshFileError);
   EXPECT_EQ(mesh_file_extension("dir.x/A.OBJ"), "obj");
 }

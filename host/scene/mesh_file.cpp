@@ -84,13 +84,15 @@ void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& 
   }
 }
 
-bool has_ply_end_header(std::string_view bytes) {
+// Where the PLY header's end_header line ends (a line starting with the word, followed by
+// whitespace or the end of the file), or npos.
+size_t ply_header_end(std::string_view bytes) {
   constexpr std::string_view kLine = "\nend_header";
   for (size_t at = bytes.find(kLine); at != std::string_view::npos; at = bytes.find(kLine, at + 1)) {
     const size_t after = at + kLine.size();
-    if (after == bytes.size() || std::isspace(static_cast<unsigned char>(bytes[after]))) return true;
+    if (after == bytes.size() || std::isspace(static_cast<unsigned char>(bytes[after]))) return after;
   }
-  return false;
+  return std::string_view::npos;
 }
 
 // Inputs on which assimp 5.2 does not come back, refused before it sees them (found by
@@ -99,8 +101,16 @@ void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string&
   // A PLY header without its end_header line: assimp's PLY reader loops for minutes (or for
   // ever) looking for it, even on a 200-byte file. "end_header" elsewhere (in a comment) is not
   // enough: it must start a line and end at whitespace or the end of the file.
-  if (extension == "ply" && !has_ply_end_header(bytes))
-    throw MeshFileError("the PLY header has no 'end_header' line");
+  if (extension != "ply") return;
+  const size_t header_end = ply_header_end(bytes);
+  if (header_end == std::string_view::npos) throw MeshFileError("the PLY header has no 'end_header' line");
+  // The PLY header is ASCII text by the format's definition. A header with other bytes in its
+  // property lines made assimp's triangulation fail an internal assertion and abort the process.
+  for (size_t i = 0; i < header_end; ++i) {
+    const unsigned char c = static_cast<unsigned char>(bytes[i]);
+    if (c >= 0x80 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t'))
+      throw MeshFileError("the PLY header has a byte that is not ASCII text at offset " + std::to_string(i));
+  }
 }
 
 }  // namespace
