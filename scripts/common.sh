@@ -6,7 +6,9 @@ CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
 
 # What each package is for is in README.md ("Dependencies").
 CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
-               libopenimageio-dev openimageio-tools libtomlplusplus-dev libassimp-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
+               libopenimageio-dev openimageio-tools libtomlplusplus-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
+# Mesh files of [[mesh]] tables (host/scene/mesh_file.cpp).
+CLPT_PACKAGES+=(libassimp-dev)
 # Tests: GoogleTest; python3 checks the JSON and CSV that bench, compare and tradeoff write;
 # Oclgrind is the second OpenCL implementation (label xdev); clang-14 with libclc-14 compiles the
 # kernels for NVIDIA (nvptx64) and AMD (amdgcn) targets (label gpucc).
