@@ -7,8 +7,6 @@ CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
 # What each package is for is in README.md ("Dependencies").
 CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
                libopenimageio-dev openimageio-tools libtomlplusplus-dev libcli11-dev nlohmann-json3-dev gnuplot-nox)
-# Mesh files of [[mesh]] tables (host/scene/mesh_file.cpp).
-CLPT_PACKAGES+=(libassimp-dev)
 # Tests: GoogleTest; python3 checks the JSON and CSV that bench, compare and tradeoff write;
 # Oclgrind is the second OpenCL implementation (label xdev); clang-14 with libclc-14 compiles the
 # kernels for NVIDIA (nvptx64) and AMD (amdgcn) targets (label gpucc).
@@ -16,6 +14,8 @@ CLPT_TEST_PACKAGES=(libgtest-dev python3 oclgrind clang-14 libclc-14)
 # scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries; assimp's test models seed the
 # mesh-file fuzzer).
 CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev assimp-testmodels)
+# Mesh files of [[mesh]] tables (host/scene/mesh_file.cpp).
+CLPT_PACKAGES+=(libassimp-dev)
 
 clpt_log() { printf 'clpt: %s\n' "$*" >&2; }
 
