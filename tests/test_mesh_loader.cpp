@@ -101,6 +101,8 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   // A PLY header with bytes that are not ASCII text made assimp abort on an internal assertion.
   EXPECT_THROW(parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 3\nproperty fl\xff\xffoat x\nend_header\n0\n1\n2\n", "ply"),
                MeshFileError);
+  // NUL bytes in an OBJ made assimp's OBJ reader crash.
+  EXPECT_THROW(parse_mesh_file(std::string_view("v 0 0 0\nv 1 0 0\0\nv 0 1 0\nf 1 2 3\n", 33), "obj"), MeshFileError);
   EXPECT_THROW(mesh_file_extension("a.fbx"), MeshFileError);
   EXPECT_EQ(mesh_file_extension("dir.x/A.OBJ"), "obj");
 }

@@ -101,6 +101,12 @@ void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string&
   // A PLY header without its end_header line: assimp's PLY reader loops for minutes (or for
   // ever) looking for it, even on a 200-byte file. "end_header" elsewhere (in a comment) is not
   // enough: it must start a line and end at whitespace or the end of the file.
+  // OBJ is text; one with NUL bytes in it made assimp's OBJ reader crash (SEGV).
+  if (extension == "obj") {
+    const size_t nul = bytes.find('\0');
+    if (nul != std::string_view::npos)
+      throw MeshFileError("an OBJ file is text, but byte " + std::to_string(nul) + " is NUL");
+  }
   if (extension != "ply") return;
   const size_t header_end = ply_header_end(bytes);
   if (header_end == std::string_view::npos) throw MeshFileError("the PLY header has no 'end_header' line");
