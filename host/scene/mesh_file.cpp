@@ -95,6 +95,23 @@ size_t ply_header_end(std::string_view bytes) {
   return std::string_view::npos;
 }
 
+// `bytes` with every OBJ `mtllib` statement turned into a comment (its first letter replaced by
+// '#'; the length is unchanged). clpt takes materials from the scene and reads no .mtl file, and
+// assimp 5.2's OBJ reader crashed (SEGV) on an `mtllib` line followed by a line starting with
+// "map_K" (found by fuzz_mesh_file).
+std::string without_obj_material_libraries(std::string_view bytes) {
+  std::string out(bytes);
+  constexpr std::string_view kStatement = "mtllib";
+  for (size_t line = 0; line < out.size();) {
+    size_t at = line;
+    while (at < out.size() && (out[at] == ' ' || out[at] == '\t')) ++at;
+    if (out.compare(at, kStatement.size(), kStatement) == 0) out[at] = '#';
+    const size_t end = out.find('\n', line);
+    line = end == std::string::npos ? out.size() : end + 1;
+  }
+  return out;
+}
+
 // Inputs on which assimp 5.2 does not come back, refused before it sees them (found by
 // tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks").
 void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string& extension) {
@@ -167,6 +184,8 @@ std::string read_mesh_file(const std::string& path) {
 MeshFileContents parse_mesh_file(std::string_view bytes, const std::string& extension) {
   if (bytes.empty()) throw MeshFileError("the mesh file is empty");
   refuse_what_assimp_cannot_handle(bytes, extension);
+  const std::string obj_text = extension == "obj" ? without_obj_material_libraries(bytes) : std::string();
+  if (extension == "obj") bytes = obj_text;
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, extension.c_str());
   if (!scene) throw MeshFileError(std::string("assimp cannot read it: ") + importer.GetErrorString());
