@@ -12,8 +12,11 @@ CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-ic
 # Oclgrind is the second OpenCL implementation (label xdev); clang-14 with libclc-14 compiles the
 # kernels for NVIDIA (nvptx64) and AMD (amdgcn) targets (label gpucc).
 CLPT_TEST_PACKAGES=(libgtest-dev python3 oclgrind clang-14 libclc-14)
-# scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries).
-CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev)
+# scripts/fuzz.sh (libFuzzer needs clang and its runtime libraries; assimp's test models seed the
+# mesh-file fuzzer).
+CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev assimp-testmodels)
+# Mesh files of [[mesh]] tables (host/scene/mesh_file.cpp).
+CLPT_PACKAGES+=(libassimp-dev)
 
 clpt_log() { printf 'clpt: %s\n' "$*" >&2; }
 
@@ -37,6 +40,12 @@ clpt_install_missing() {
   clpt_log "installing missing packages: ${missing[*]}"
   "${sudo[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+}
+
+# clpt_generate_meshes: writes the generated mesh of scenes/torus-knot.toml if it is missing
+# (scripts/make_mesh_scene.py; python3 is in the base system of Debian 12 and in CLPT_TEST_PACKAGES).
+clpt_generate_meshes() {
+  [[ -f "$CLPT_ROOT/scenes/meshes/torus_knot.ply" ]] || python3 "$CLPT_ROOT/scripts/make_mesh_scene.py" >&2
 }
 
 # clpt_build [CMAKE_ARGS...]: configure (Release) and build everything in $CLPT_BUILD.

@@ -18,6 +18,7 @@ if [[ "${1:-}" == "--book" ]]; then
 fi
 
 clpt_install_missing "${CLPT_PACKAGES[@]}"
+clpt_generate_meshes
 clpt_build -DCLPT_BUILD_TESTS=OFF
 mkdir -p "$CLPT_ROOT/out"
 "$CLPT_BUILD/clpt" render "$CLPT_ROOT/scenes/diffuse.toml" -o "$CLPT_ROOT/out/diffuse.exr" ${first_picture[@]+"${first_picture[@]}"} "$@"

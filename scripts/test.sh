@@ -5,6 +5,7 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
+clpt_generate_meshes
 clpt_build -DCLPT_BUILD_TESTS=ON
 "$CLPT_BUILD/clpt" devices
 cd "$CLPT_BUILD"
@@ -15,8 +16,8 @@ if [[ $# -eq 0 ]]; then
 else
   ctest --output-on-failure -j "$(nproc)" "$@"
 fi
-# The whole suite (no ctest arguments) goes on with 40 s fuzz runs of the scene loader and the
-# option parser, then the unit and bad-input tests under ASan + UBSan, each in its own build
+# The whole suite (no ctest arguments) goes on with 40 s fuzz runs of the scene loader, mesh
+# files and the option parser, then the unit and bad-input tests under ASan + UBSan, each in its own build
 # directory (about 6 minutes more on 2 cores).
 if [[ $# -eq 0 ]]; then
   "$CLPT_ROOT/scripts/fuzz.sh" 40

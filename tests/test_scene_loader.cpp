@@ -256,7 +256,7 @@ TEST(SceneString, MisspelledMaterialTypeGetsASuggestion) {
 
 TEST(SceneString, EmptySphereArrayHasNoSpheres) {
   EXPECT_EQ(string_error("sphere = []\n[camera]\nposition = [0, 0, 1]\nlook_at = [0, 0, 0]\n"),
-            "mem.toml:1:10: sphere: the scene has no spheres");
+            "mem.toml:1:10: sphere: the scene has no spheres or meshes");
 }
 
 TEST(SceneString, HugeIntegerIsOutOfRangeNotWrapped) {

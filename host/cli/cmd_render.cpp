@@ -277,10 +277,13 @@ int run(const RenderOptions& o) {
   if (o.explain) request.on_plan = [](const RenderPlan& plan) { std::printf("%s", explain_plan(plan).c_str()); };
   RenderReport report;
   request.scene = scene;
-  // Scenes beyond what the extreme-scene tests proved for this preset (README "Numerical extremes").
-  if (!o.quiet && writes)
-    for (const std::string& warning : precision_range_warnings(scene, request.precision))
-      std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
+  // The loader's findings (e.g. degenerate triangles dropped), then scenes beyond what the
+  // extreme-scene tests proved for this preset (README "Numerical extremes").
+  if (!o.quiet && writes) {
+    std::vector<std::string> warnings = scene.warnings;
+    for (std::string& warning : precision_range_warnings(scene, request.precision)) warnings.push_back(std::move(warning));
+    for (const std::string& warning : warnings) std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
+  }
   install_interrupt_handlers();
   request.interrupt = &interrupt_flag();
   if (!writes) return run_as_worker(ranks, request);

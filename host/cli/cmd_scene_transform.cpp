@@ -59,9 +59,9 @@ std::function<int()> add_scene_transform_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("scene-transform", "Write a scaled and/or translated copy of a scene file");
   cmd->add_option("scene", o->input, "Scene file (TOML) to transform")->required();
   cmd->add_option("-o,--output", o->output, "Output scene file (TOML)")->required();
-  cmd->add_option("--scale", o->scale, "Multiply every centre, radius and camera point by S (first)")
+  cmd->add_option("--scale", o->scale, "Multiply every centre, radius, mesh vertex and camera point by S (first)")
       ->check(CLI::Range(1e-30, 1e30));
-  cmd->add_option("--translate", o->translate, "Add X,Y,Z to every centre and camera point (after scaling)")
+  cmd->add_option("--translate", o->translate, "Add X,Y,Z to every centre, mesh vertex and camera point (after scaling)")
       ->delimiter(',')
       ->expected(3);
   cmd->add_option("--emission-scale", o->emission_scale, "Multiply every emitter's emission by E")

@@ -44,6 +44,15 @@
 //     (x 1.5^2); kEmissionSafeMax = 1e17. At the other end the square of a directly seen emission
 //     becomes denormal below L = 1.1e-19 (zero under flush-to-zero), and each bounce multiplies by
 //     an albedo that may be 0.1; kEmissionSafeMin = 1e-15 leaves four such bounces of margin.
+//  8. Triangles (issue 14). A triangle is stored like a sphere's surface point: its vertices
+//     relative to the camera, rounded to the device arithmetic (u per coordinate, at distance up
+//     to D, its farthest vertex), after the host's double rounding of world coordinates; a
+//     watertight intersection has no cancellation term of its own beyond that rounding. So
+//         delta_t = 2 u D + 2^-53 (max |v| + |camera|),   rho_t = delta_t / min(e_t, L)
+//     with e_t the triangle's longest edge, in every preset (no discriminant: the fast preset's
+//     term 4 does not arise). The threshold is the spheres' measured one: no extreme-scene
+//     matrix has been run on meshes yet, so a mesh inside it is as proven as the sphere model
+//     says and no more.
 #include "scene/precision_range.h"
 
 #include "scene/device_scene.h"
@@ -62,6 +71,24 @@ std::string format_short(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.2g", v);
   return buf;
+}
+
+// Terms 1 and 2 (and 8): the absolute error of a hit point found `distance` from the camera, for
+// geometry whose world coordinates (plus the camera's) are of size `world_size`.
+double hit_point_error(double u, double distance, double world_size) {
+  return 2 * u * distance + kDoubleRoundoff * world_size;
+}
+
+// What every estimate starts from: the preset's unit roundoff, the camera, the view distance L.
+struct ViewModel {
+  double u;
+  Vec3 camera;
+  double view_distance;
+};
+
+ViewModel view_model(const Scene& scene, Precision precision) {
+  return {device_unit_roundoff(precision), scene.camera.position,
+          length(sub(scene.camera.look_at, scene.camera.position))};
 }
 
 }  // namespace
@@ -90,9 +117,7 @@ double proven_relative_error(Precision precision) {
 }
 
 std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Precision precision) {
-  const double u = device_unit_roundoff(precision);
-  const Vec3& camera = scene.camera.position;
-  const double view_distance = length(sub(scene.camera.look_at, camera));
+  const auto [u, camera, view_distance] = view_model(scene, precision);
   std::vector<SpherePrecision> out;
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& s = scene.spheres[i];
@@ -101,14 +126,37 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
     p.distance_from_camera = length(sub(surface_frame(s, scene.camera.look_at).point, camera));
     p.feature_size = std::min(s.radius, view_distance);
     const double world_size = length(s.center) + s.radius + length(camera);
-    const double delta = 2 * u * p.distance_from_camera + kDoubleRoundoff * world_size;
-    p.relative_error = delta / p.feature_size;
+    p.relative_error = hit_point_error(u, p.distance_from_camera, world_size) / p.feature_size;
     if (precision == Precision::Fast) {
       const double d = p.distance_from_camera;
       const double cancellation = u * (d * d + 2 * s.radius * d) / (s.radius * p.feature_size);
       p.relative_error = std::max(p.relative_error, cancellation);
     }
     out.push_back(p);
+  }
+  return out;
+}
+
+std::vector<TrianglePrecision> estimate_mesh_precision(const Scene& scene, Precision precision) {
+  const auto [u, camera, view_distance] = view_model(scene, precision);
+  std::vector<TrianglePrecision> out;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const TriangleMesh& mesh = scene.meshes[m];
+    TrianglePrecision worst{int(m), 0, 0, 0, 0};
+    for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+      double distance = 0, edge = 0, world = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& a = mesh.positions[mesh.triangles[t][size_t(k)]];
+        const Vec3& b = mesh.positions[mesh.triangles[t][size_t((k + 1) % 3)]];
+        distance = std::max(distance, length(sub(a, camera)));
+        edge = std::max(edge, length(sub(b, a)));
+        world = std::max(world, length(a));
+      }
+      const double feature = std::min(edge, view_distance);
+      const double rho = hit_point_error(u, distance, world + length(camera)) / feature;
+      if (rho > worst.relative_error) worst = {int(m), t, rho, distance, feature};
+    }
+    out.push_back(worst);
   }
   return out;
 }
@@ -139,6 +187,21 @@ std::vector<std::string> precision_range_warnings(const Scene& scene, Precision 
     }
     warnings.push_back(w);
   }
+  const std::vector<TrianglePrecision> meshes_in_double = estimate_mesh_precision(scene, Precision::Double);
+  for (const TrianglePrecision& p : estimate_mesh_precision(scene, precision)) {
+    if (p.relative_error <= limit) continue;
+    const TriangleMesh& m = scene.meshes[size_t(p.mesh)];
+    std::string w = m.where.str() + ": mesh '" + m.name + "': triangle " + std::to_string(p.triangle) + " (size " +
+                    format_short(p.feature_size) + ", " + format_short(p.distance_from_camera) +
+                    " from the camera): estimated " + precision_name(precision) + " error " +
+                    format_short(p.relative_error) + " of its size, beyond the " + format_short(limit) +
+                    " the extreme-scene tests proved (README \"Numerical extremes\")";
+    if (precision != Precision::Double) {
+      const bool double_fits = meshes_in_double[size_t(p.mesh)].relative_error <= proven_relative_error(Precision::Double);
+      w += double_fits ? "; render with --precision double" : "; even --precision double is out of range";
+    }
+    warnings.push_back(w);
+  }
   const double epsilon = ray_epsilon_for(scene.camera, precision);
   for (const Sphere& s : scene.spheres) {
     const double gap = std::abs(length(sub(s.center, scene.camera.position)) - s.radius);
@@ -149,18 +212,20 @@ std::vector<std::string> precision_range_warnings(const Scene& scene, Precision 
                        " (1e-5 of the camera-to-look-at distance): the camera may see through it; "
                        "move the camera away or the look-at point closer");
   }
-  for (const Sphere& s : scene.spheres) {
-    if (s.material.type != MaterialType::Emitter) continue;
-    for (double e : s.material.emission) {
+  const auto check_emission = [&](const Material& material, const SourcePosition& where, const std::string& what) {
+    if (material.type != MaterialType::Emitter) return;
+    for (double e : material.emission) {
       if (e == 0 || (e >= kEmissionSafeMin && e <= kEmissionSafeMax)) continue;
-      warnings.push_back(s.where.str() + ": sphere '" + s.name + "': emission " + format_short(e) +
+      warnings.push_back(where.str() + ": " + what + ": emission " + format_short(e) +
                          " is outside [" + format_short(kEmissionSafeMin) + ", " +
                          format_short(kEmissionSafeMax) +
                          "], where the film's float sums stay finite and normal; rescale the "
                          "scene's emission (the image scales with it)");
       break;
     }
-  }
+  };
+  for (const Sphere& s : scene.spheres) check_emission(s.material, s.where, "sphere '" + s.name + "'");
+  for (const TriangleMesh& m : scene.meshes) check_emission(m.material, m.where, "mesh '" + m.name + "'");
   return warnings;
 }
 

@@ -1,7 +1,7 @@
 // Will this scene render correctly in the chosen precision preset? An a-priori estimate of the
-// relative floating-point error of each sphere's intersections, from the scene's geometry alone,
+// relative floating-point error of each sphere's and triangle's intersections, from the scene's geometry alone,
 // compared with the largest error the extreme-scene tests proved harmless (README "Numerical
-// extremes"). `clpt render` prints a warning for every sphere outside that range. The derivation
+// extremes"). `clpt render` prints a warning for every sphere and mesh outside that range. The derivation
 // is in precision_range.cpp.
 #pragma once
 
@@ -41,8 +41,22 @@ std::vector<SpherePrecision> estimate_sphere_precision(const Scene& scene, Preci
 // The worst estimate over the scene's spheres (relative_error 0 when there are none).
 SpherePrecision worst_sphere_precision(const Scene& scene, Precision precision);
 
-// One line per problem: a sphere whose estimate exceeds proven_relative_error(precision), a
-// sphere whose surface is within kNearClipMargin ray epsilons of the camera, or an emitter whose
+// The same model for triangles (precision_range.cpp, item 8): each triangle's worst estimate.
+struct TrianglePrecision {
+  int mesh = -1;                    // index into Scene::meshes
+  size_t triangle = 0;              // index into that mesh's triangles
+  double relative_error = 0;        // estimated hit-point error / the triangle's feature size
+  double distance_from_camera = 0;  // to its farthest vertex (world units)
+  double feature_size = 0;          // min(longest edge, camera-to-look-at distance), world units
+};
+
+// The worst triangle of each mesh, in scene order (none for a scene without meshes).
+std::vector<TrianglePrecision> estimate_mesh_precision(const Scene& scene, Precision precision);
+
+// One line per problem: a sphere or a mesh (its worst triangle) whose estimate exceeds
+// proven_relative_error(precision), a
+// sphere whose surface is within kNearClipMargin ray epsilons of the camera, or an emitter (sphere
+// or mesh) whose
 // emission leaves [kEmissionSafeMin, kEmissionSafeMax]. Each names the sphere and
 // its file position and suggests --precision double where that preset would be in range.
 // Empty when the scene is inside the proven range.

@@ -39,6 +39,16 @@ struct Sphere {
   SourcePosition where;  // position of the [[sphere]] table
 };
 
+// How a [[mesh]] table places its vertices in the world: p_world = translate + Rz Ry Rx (scale * p),
+// i.e. scale per axis first, then rotate about x, then y, then z (degrees, right-handed), then
+// translate. Kept beside the world-space positions so that `clpt scene-transform` can write a file
+// mesh back as the same file with the composed placement.
+struct MeshPlacement {
+  Vec3 scale{1, 1, 1};       // > 0 per axis
+  Vec3 rotate_deg{0, 0, 0};  // about x, then y, then z
+  Vec3 translate{0, 0, 0};   // world units, applied last
+};
+
 // A triangle mesh in world space, as the loader leaves it: positions after the [[mesh]] table's
 // scale, rotation and translation; triangles as indices into positions, degenerate ones already
 // dropped. Normals, when the mesh file has them, are one unit vector per position, in world space
@@ -52,6 +62,9 @@ struct TriangleMesh {
   std::vector<std::array<uint32_t, 3>> triangles;
   Material material;
   SourcePosition where;  // position of the [[mesh]] table
+  // The table's scale/rotate_deg/translate (positions and normals already include it); for an
+  // inline mesh written back by the scene writer the positions are written as they are.
+  MeshPlacement placement;
 };
 
 // Pinhole camera. The book's camera: a sensor sensor_height units high placed sensor_distance in
@@ -86,11 +99,16 @@ struct RenderSettings {
 
 struct Scene {
   std::string file;        // path it was loaded from
-  std::string file_hash;   // FNV-1a 64 of the file's bytes, hex
+  // FNV-1a 64 of the file's bytes, hex; with mesh files, chained over each one's name and
+  // file_hash too (scene_loader.cpp), so --resume, checkpoints and clpt:scene_hash see a changed mesh.
+  std::string file_hash;
   Camera camera;
   RenderSettings settings;
   std::vector<Sphere> spheres;
-  std::vector<TriangleMesh> meshes;  // none until the loader reads [[mesh]] tables
+  std::vector<TriangleMesh> meshes;  // the [[mesh]] tables, in file order
+  // Non-fatal findings of the loader ("FILE:LINE:COLUMN: ..."), e.g. degenerate triangles dropped;
+  // the commands print each as "clpt: warning: ...".
+  std::vector<std::string> warnings;
 };
 
 }  // namespace clpt

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -14,8 +15,11 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "scene/mesh_file.h"
+#include "scene/mesh_placement.h"
 #include "scene/scene_validate.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -202,6 +206,10 @@ class TableReader {
   std::optional<double> number(std::string_view key) const;
   std::optional<std::string> string(std::string_view key) const;
   std::optional<Vec3> vec3(std::string_view key) const;
+  // The array of arrays under `key`, each of N numbers (integers when T is int64_t); records
+  // each row's position as "KEY[i]". Empty when the key is absent.
+  template <typename T, size_t N>
+  std::vector<std::array<T, N>> rows(std::string_view key) const;
   // The sub-table under `key`: a [header] table or an inline { } table.
   std::optional<TableReader> table(std::string_view key) const;
   // A reader for a table reached other than by key (an element of an array of tables).
@@ -288,6 +296,47 @@ std::optional<Vec3> TableReader::vec3(std::string_view key) const {
       fail(position_of(element), key_path(key),
            "expected an array of 3 numbers, element " + std::to_string(i) + " is " +
                type_description(element));
+  }
+  return out;
+}
+
+// One element of a row of rows<T, N>(): a number (double) or an integer (int64_t), or nothing.
+std::optional<double> row_element(const toml::node& node, double*) {
+  if (const auto* f = node.as_floating_point()) return f->get();
+  if (const auto* n = node.as_integer()) return static_cast<double>(n->get());
+  return std::nullopt;
+}
+std::optional<int64_t> row_element(const toml::node& node, int64_t*) {
+  if (const auto* n = node.as_integer()) return n->get();
+  return std::nullopt;
+}
+
+template <typename T, size_t N>
+std::vector<std::array<T, N>> TableReader::rows(std::string_view key) const {
+  const std::string what = "an array of arrays of " + std::to_string(N) +
+                           (std::is_integral_v<T> ? " integers" : " numbers");
+  std::vector<std::array<T, N>> out;
+  const toml::node* node = get(key);
+  if (!node) return out;
+  const toml::array* array = node->as_array();
+  if (!array) fail_type(key, *node, what);
+  for (size_t i = 0; i < array->size(); ++i) {
+    const toml::node& row_node = *array->get(i);
+    const std::string row_key = key_path(key) + "[" + std::to_string(i) + "]";
+    sources_.record(row_key, position_of(row_node));
+    const toml::array* row = row_node.as_array();
+    if (!row || row->size() != N)
+      fail(position_of(row_node), row_key,
+           "expected " + what + ", got " + (row ? std::to_string(row->size()) + " elements" : type_description(row_node)));
+    std::array<T, N> values{};
+    for (size_t j = 0; j < N; ++j) {
+      const auto value = row_element(*row->get(j), static_cast<T*>(nullptr));
+      if (!value)
+        fail(position_of(*row->get(j)), row_key,
+             "expected " + what + ", element " + std::to_string(j) + " is " + type_description(*row->get(j)));
+      values[j] = *value;
+    }
+    out.push_back(values);
   }
   return out;
 }
@@ -396,9 +445,9 @@ Material read_material(const TableReader& material) {
   return m;
 }
 
-// Sphere::where: the [[sphere]] header (or inline table); if toml++ gave the table no position,
+// Sphere::where and TriangleMesh::where: the [[sphere]] or [[mesh]] header (or inline table); if toml++ gave the table no position,
 // its first key in the file; failing that, `fallback` (the array's position).
-SourcePosition sphere_position(const toml::table& table, const TableReader& top,
+SourcePosition table_position(const toml::table& table, const TableReader& top,
                                const SourcePosition& fallback) {
   const toml::source_position* first = nullptr;
   if (table.source().begin.line > 0) first = &table.source().begin;
@@ -424,38 +473,127 @@ Sphere read_sphere(const TableReader& sphere, size_t index) {
   return s;
 }
 
-// The [[sphere]] array of tables; at least one sphere.
-std::vector<Sphere> read_spheres(const TableReader& top) {
-  const toml::node* node = top.get("sphere");
-  if (!node) fail(top.where(), "sphere", "the scene has no spheres");
+// `scale`: one number for all three axes or [sx, sy, sz]; 1 when absent.
+Vec3 read_mesh_scale(const TableReader& mesh) {
+  const toml::node* node = mesh.get("scale");
+  if (!node) return {1, 1, 1};
+  if (node->is_number()) {
+    const double s = *mesh.number("scale");
+    return {s, s, s};
+  }
+  if (!node->is_array()) mesh.fail_type("scale", *node, "a number or an array of 3 numbers");
+  return *mesh.vec3("scale");
+}
+
+// `file`: read through assimp (mesh_file.h); every MeshFileError gets the `file` value's position
+// and the file's name as the scene writes it. The file's warnings are returned prefixed the same.
+LocalMesh read_mesh_file_table(const TableReader& mesh, const std::string& file, const std::string& scene_file,
+                               TriangleMesh& out, std::vector<std::string>& warnings) {
+  const SourcePosition at = mesh.position_of(*mesh.get("file"));
+  const std::string prefix = at.str() + ": " + mesh.key_path("file") + ": " + file + ": ";
+  try {
+    const std::string extension = mesh_file_extension(file);
+    const std::string bytes = read_mesh_file(resolve_mesh_path(scene_file, file));
+    out.file_hash = hex64(fnv1a64(bytes));
+    MeshFileContents contents = parse_mesh_file(bytes, extension);
+    for (const std::string& w : contents.warnings) warnings.push_back(prefix + w);
+    return std::move(contents.mesh);
+  } catch (const MeshFileError& e) {
+    throw Error(ExitCode::BadScene, prefix + e.what());
+  }
+}
+
+// One [[mesh]] table: a mesh file or inline vertices, placed, degenerate triangles dropped (and
+// counted in a warning).
+TriangleMesh read_mesh(const TableReader& mesh, size_t index, const SourceMap& sources,
+                       std::vector<std::string>& warnings) {
+  mesh.reject_unknown_keys(
+      {"name", "file", "scale", "rotate_deg", "translate", "material", "vertices", "normals", "triangles", "quads"});
+  TriangleMesh m;
+  m.name = mesh.string("name").value_or("mesh[" + std::to_string(index) + "]");
+  m.where = mesh.where();
+  m.placement.scale = read_mesh_scale(mesh);
+  if (const auto r = mesh.vec3("rotate_deg")) m.placement.rotate_deg = *r;
+  if (const auto t = mesh.vec3("translate")) m.placement.translate = *t;
+  const auto material = mesh.table("material");
+  if (!material) mesh.fail_missing("material");
+  m.material = read_material(*material);
+  scene_detail::check_mesh_placement(m.placement, mesh.path(), sources);
+
+  const auto file = mesh.string("file");
+  LocalMesh local;
+  if (file) {
+    for (const char* inline_key : {"vertices", "normals", "triangles", "quads"})
+      if (const toml::node* node = mesh.get(inline_key))
+        fail(mesh.position_of(*node), mesh.key_path(inline_key),
+             "'" + std::string(inline_key) + "' does not go with 'file' (a mesh is a file or written inline)");
+    m.file = *file;
+    local = read_mesh_file_table(mesh, *file, sources.file(), m, warnings);
+  } else {
+    if (!mesh.get("vertices")) fail(mesh.where(), mesh.path(), "a mesh needs 'file' or inline 'vertices'");
+    scene_detail::InlineMeshRows rows;
+    rows.vertices = mesh.rows<double, 3>("vertices");
+    rows.normals = mesh.rows<double, 3>("normals");
+    rows.triangles = mesh.rows<int64_t, 3>("triangles");
+    rows.quads = mesh.rows<int64_t, 4>("quads");
+    local = scene_detail::inline_local_mesh(rows, mesh.path(), sources);
+  }
+  const size_t dropped = place_mesh(local, m);
+  scene_detail::check_placed_mesh(m, dropped, mesh.path(), sources);
+  if (dropped > 0)
+    warnings.push_back(m.where.str() + ": mesh '" + m.name + "': " + std::to_string(dropped) + " of " +
+                       std::to_string(local.triangles.size()) + " triangles have zero area and were dropped");
+  return m;
+}
+
+// The array of tables under `key` ([[sphere]], [[mesh]]), each element read by
+// read(reader, index); none when the key is absent.
+template <typename Read>
+auto read_table_array(const TableReader& top, const std::string& key, Read read) {
+  std::vector<decltype(read(top, size_t(0)))> out;
+  const toml::node* node = top.get(key);
+  if (!node) return out;
   const toml::array* array = node->as_array();
-  if (!array) top.fail_type("sphere", *node, "an array of tables ([[sphere]])");
-  if (array->empty()) fail(top.position_of(*node), "sphere", "the scene has no spheres");
-  std::vector<Sphere> spheres;
+  if (!array) top.fail_type(key, *node, "an array of tables ([[" + key + "]])");
   for (size_t i = 0; i < array->size(); ++i) {
     const toml::node& element = *array->get(i);
-    const std::string path = "sphere[" + std::to_string(i) + "]";
+    const std::string path = key + "[" + std::to_string(i) + "]";
     const toml::table* table = element.as_table();
     if (!table)
       fail(top.position_of(element), path, "expected a table, got " + type_description(element));
-    const SourcePosition where = sphere_position(*table, top, top.position_of(element));
-    spheres.push_back(read_sphere(top.child(*table, path, where), i));
+    const SourcePosition where = table_position(*table, top, top.position_of(element));
+    out.push_back(read(top.child(*table, path, where), i));
   }
-  return spheres;
+  return out;
+}
+
+// The mesh files' names and hashes chained onto the scene file's hash (Scene::file_hash).
+std::string scene_hash(const std::string& text, const std::vector<TriangleMesh>& meshes) {
+  uint64_t hash = fnv1a64(text);
+  for (const TriangleMesh& m : meshes)
+    if (!m.file.empty()) hash = fnv1a64(m.file + '\0' + m.file_hash + '\n', hash);
+  return hex64(hash);
 }
 
 // Structure and types of the whole document, then the semantic rules.
 Scene build_scene(const toml::table& root, const std::string& file) {
   SourceMap sources(file);
   const TableReader top(root, "", SourcePosition{file, 1, 1}, sources);
-  top.reject_unknown_keys({"image", "render", "camera", "sphere"});
+  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh"});
   Scene scene;
   if (const auto image = top.table("image")) read_image(*image, scene.settings);
   if (const auto render = top.table("render")) read_render(*render, scene.settings);
   const auto camera = top.table("camera");
   if (!camera) fail(top.where(), "camera", "missing required table [camera]");
   read_camera(*camera, scene.camera);
-  scene.spheres = read_spheres(top);
+  scene.spheres = read_table_array(top, "sphere", read_sphere);
+  scene.meshes = read_table_array(top, "mesh", [&](const TableReader& mesh, size_t i) {
+    return read_mesh(mesh, i, sources, scene.warnings);
+  });
+  if (scene.spheres.empty() && scene.meshes.empty()) {
+    const toml::node* sphere = top.get("sphere");
+    fail(sphere ? top.position_of(*sphere) : top.where(), "sphere", "the scene has no spheres or meshes");
+  }
   scene_detail::validate_scene(scene, sources);
   return scene;
 }
@@ -526,7 +664,7 @@ Scene load_scene_string(const std::string& text, const std::string& name) {
   const toml::table root = parse_toml(text, name);
   Scene scene = build_scene(root, name);
   scene.file = name;
-  scene.file_hash = hex64(fnv1a64(text));
+  scene.file_hash = scene_hash(text, scene.meshes);
   return scene;
 }
 

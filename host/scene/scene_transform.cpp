@@ -1,3 +1,4 @@
+// Similarity transforms of a whole scene (scene_transform.h): spheres, meshes and the camera.
 #include "scene/scene_transform.h"
 
 #include <cmath>
@@ -25,6 +26,13 @@ Scene scale_scene(const Scene& scene, double factor) {
     s.center = scale(s.center, factor);
     s.radius *= factor;
   }
+  // A mesh's world positions scale with the scene; its placement composes: factor * (M p + t)
+  // = (factor M) p + factor t, so a file mesh is written back as the same file (scene_writer).
+  for (TriangleMesh& m : out.meshes) {
+    for (Vec3& p : m.positions) p = scale(p, factor);
+    m.placement.scale = scale(m.placement.scale, factor);
+    m.placement.translate = scale(m.placement.translate, factor);
+  }
   out.camera.position = scale(out.camera.position, factor);
   out.camera.look_at = scale(out.camera.look_at, factor);
   return out;
@@ -35,6 +43,10 @@ Scene translate_scene(const Scene& scene, const Vec3& offset) {
     if (!std::isfinite(o)) throw std::invalid_argument("translation must be finite");
   Scene out = scene;
   for (Sphere& s : out.spheres) s.center = add(s.center, offset);
+  for (TriangleMesh& m : out.meshes) {
+    for (Vec3& p : m.positions) p = add(p, offset);
+    m.placement.translate = add(m.placement.translate, offset);
+  }
   out.camera.position = add(out.camera.position, offset);
   out.camera.look_at = add(out.camera.look_at, offset);
   return out;
@@ -45,6 +57,8 @@ Scene scale_emission(const Scene& scene, double factor) {
   Scene out = scene;
   for (Sphere& s : out.spheres)
     if (s.material.type == MaterialType::Emitter) s.material.emission = scale(s.material.emission, factor);
+  for (TriangleMesh& m : out.meshes)
+    if (m.material.type == MaterialType::Emitter) m.material.emission = scale(m.material.emission, factor);
   return out;
 }
 

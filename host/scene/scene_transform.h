@@ -8,12 +8,13 @@
 
 namespace clpt {
 
-// Every sphere centre and radius, the camera position and look-at point multiplied by `factor`
+// Every sphere centre and radius, mesh vertex, the camera position and look-at point multiplied by `factor`
 // (> 0 and finite; throws std::invalid_argument otherwise). `up` and the field of view are
-// directions and an angle: unchanged.
+// directions and an angle: unchanged, and so are mesh normals. Each mesh's placement is composed
+// with the transform (see TriangleMesh::placement).
 Scene scale_scene(const Scene& scene, double factor);
 
-// `offset` added to every sphere centre, the camera position and look-at point (finite; throws
+// `offset` added to every sphere centre, mesh vertex, the camera position and look-at point (finite; throws
 // std::invalid_argument otherwise).
 Scene translate_scene(const Scene& scene, const Vec3& offset);
 

@@ -1,6 +1,7 @@
 // Semantic checks on a scene the loader has already checked for structure and types: every number
-// finite and in range, at least one emitter, a camera that defines a view. Messages name the
-// dotted key and point at the value's position in the file (see SourceMap).
+// finite and in range, inline meshes' indices in range, at least one emitter, a camera that
+// defines a view. Messages name the dotted key and point at the value's position in the file
+// (see SourceMap).
 #include "scene/scene_validate.h"
 
 #include <algorithm>
@@ -112,6 +113,22 @@ void check_sphere(const Sphere& sphere, const std::string& key, const SourceMap&
   check_material(sphere.material, key + ".material", sources);
 }
 
+// An index row of an inline mesh: every index in [0, vertex_count).
+template <size_t N>
+void check_indices(const std::array<int64_t, N>& row, size_t vertex_count, const std::string& key,
+                   const SourceMap& sources) {
+  for (int64_t index : row)
+    if (index < 0 || uint64_t(index) >= vertex_count)
+      fail_at(sources, key,
+              "index " + std::to_string(index) + " is out of range (the mesh has " + std::to_string(vertex_count) +
+                  " vertices, indices 0 to " + std::to_string(int64_t(vertex_count) - 1) + ")");
+}
+
+template <size_t N>
+std::array<uint32_t, 3> corners(const std::array<int64_t, N>& row, size_t a, size_t b, size_t c) {
+  return {uint32_t(row[a]), uint32_t(row[b]), uint32_t(row[c])};
+}
+
 // The camera must define a view direction, and `up` must pick a roll around it.
 void check_camera(const Camera& camera, const SourceMap& sources) {
   require_finite(camera.position, "camera.position", sources);
@@ -137,6 +154,63 @@ void check_camera(const Camera& camera, const SourceMap& sources) {
                 ", view direction " + format_vec3(view) + ")");
 }
 
+}  // namespace
+
+void check_mesh_placement(const MeshPlacement& placement, const std::string& key, const SourceMap& sources) {
+  require_finite(placement.scale, key + ".scale", sources);
+  for (double s : placement.scale)
+    if (!(s > 0)) fail_at(sources, key + ".scale", "scale must be > 0 (got " + format_vec3(placement.scale) + ")");
+  require_finite(placement.rotate_deg, key + ".rotate_deg", sources);
+  require_finite(placement.translate, key + ".translate", sources);
+}
+
+LocalMesh inline_local_mesh(const InlineMeshRows& rows, const std::string& key, const SourceMap& sources) {
+  const auto row_key = [&](const char* array, size_t i) { return key + "." + array + "[" + std::to_string(i) + "]"; };
+  if (rows.vertices.empty()) fail_at(sources, key + ".vertices", "the mesh has no vertices");
+  if (rows.vertices.size() > std::numeric_limits<uint32_t>::max())
+    fail_at(sources, key + ".vertices", "more than 2^32 - 1 vertices");
+  LocalMesh mesh;
+  for (size_t i = 0; i < rows.vertices.size(); ++i) {
+    require_finite(rows.vertices[i], row_key("vertices", i), sources);
+    mesh.positions.push_back(rows.vertices[i]);
+  }
+  if (!rows.normals.empty() && rows.normals.size() != rows.vertices.size())
+    fail_at(sources, key + ".normals",
+            "normals must have one entry per vertex (got " + std::to_string(rows.normals.size()) + " for " +
+                std::to_string(rows.vertices.size()) + " vertices)");
+  for (size_t i = 0; i < rows.normals.size(); ++i) {
+    const Vec3& n = rows.normals[i];
+    require_finite(n, row_key("normals", i), sources);
+    if (n[0] == 0 && n[1] == 0 && n[2] == 0) fail_at(sources, row_key("normals", i), "a normal must not be zero");
+    mesh.normals.push_back(n);
+  }
+  if (rows.triangles.empty() && rows.quads.empty())
+    fail_at(sources, key, "the mesh has neither triangles nor quads");
+  for (size_t i = 0; i < rows.triangles.size(); ++i) {
+    check_indices(rows.triangles[i], rows.vertices.size(), row_key("triangles", i), sources);
+    mesh.triangles.push_back(corners(rows.triangles[i], 0, 1, 2));
+  }
+  for (size_t i = 0; i < rows.quads.size(); ++i) {
+    check_indices(rows.quads[i], rows.vertices.size(), row_key("quads", i), sources);
+    mesh.triangles.push_back(corners(rows.quads[i], 0, 1, 2));
+    mesh.triangles.push_back(corners(rows.quads[i], 0, 2, 3));
+  }
+  return mesh;
+}
+
+void check_placed_mesh(const TriangleMesh& mesh, size_t dropped, const std::string& key, const SourceMap& sources) {
+  for (size_t i = 0; i < mesh.positions.size(); ++i)
+    if (!all_finite(mesh.positions[i]))
+      fail_at(sources, key + ".scale",
+              "vertex " + std::to_string(i) + " is not finite after scale, rotate_deg and translate (got " +
+                  format_vec3(mesh.positions[i]) + ")");
+  if (mesh.triangles.empty())
+    fail_at(sources, key,
+            "the mesh has no triangles left: all " + std::to_string(dropped) + " have zero area after placement");
+}
+
+namespace {
+
 void check_settings(const RenderSettings& settings, const SourceMap& sources) {
   // The grid sampler places spp / 16 samples at each of 4 x 4 sub-pixel positions.
   if (settings.sampler == Sampler::Grid && settings.spp % 16 != 0)
@@ -154,7 +228,9 @@ void check_settings(const RenderSettings& settings, const SourceMap& sources) {
 void require_emitter(const Scene& scene, const SourceMap& sources) {
   for (const Sphere& sphere : scene.spheres)
     if (sphere.material.type == MaterialType::Emitter) return;
-  fail(SourcePosition{sources.file(), 1, 1}, "sphere",
+  for (const TriangleMesh& mesh : scene.meshes)
+    if (mesh.material.type == MaterialType::Emitter) return;
+  fail(SourcePosition{sources.file(), 1, 1}, scene.spheres.empty() ? "mesh" : "sphere",
        "the scene has no emitter, so every image would be black");
 }
 
@@ -214,6 +290,8 @@ void validate_scene(const Scene& scene, const SourceMap& sources) {
   check_camera(scene.camera, sources);
   for (size_t i = 0; i < scene.spheres.size(); ++i)
     check_sphere(scene.spheres[i], "sphere[" + std::to_string(i) + "]", sources);
+  for (size_t i = 0; i < scene.meshes.size(); ++i)
+    check_material(scene.meshes[i].material, "mesh[" + std::to_string(i) + "].material", sources);
   require_emitter(scene, sources);
 }
 

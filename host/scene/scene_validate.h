@@ -3,11 +3,14 @@
 // finiteness, an emitter present, a usable camera). Not for use outside host/scene.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "scene/mesh_placement.h"
 #include "scene/scene.h"
 
 namespace clpt::scene_detail {
@@ -43,9 +46,32 @@ std::string format_number(double value);
 // Scene's field type: TOML integers are 64-bit and would otherwise wrap silently.
 void check_integer_setting(const std::string& key, int64_t value, const SourcePosition& where);
 
+// An inline mesh as the [[mesh]] table writes it, before its values are judged: rows of the
+// `vertices`, `normals`, `triangles` and `quads` arrays (the loader has checked that each row has
+// 3, 3, 3 and 4 numbers, integers for the index lists, and recorded each row's position as
+// "KEY.vertices[i]" etc.).
+struct InlineMeshRows {
+  std::vector<Vec3> vertices;
+  std::vector<Vec3> normals;
+  std::vector<std::array<int64_t, 3>> triangles;
+  std::vector<std::array<int64_t, 4>> quads;
+};
+
+// Scale > 0 and finite per axis, rotation and translation finite. `key` is "mesh[i]".
+void check_mesh_placement(const MeshPlacement& placement, const std::string& key, const SourceMap& sources);
+
+// The rows' values judged (finite vertices, normals non-zero and one per vertex, indices in
+// range, at least one triangle or quad) and turned into a LocalMesh, each quad (i, j, k, l) split
+// into the triangles (i, j, k) and (i, k, l).
+LocalMesh inline_local_mesh(const InlineMeshRows& rows, const std::string& key, const SourceMap& sources);
+
+// After placement (mesh_placement.h): every position still finite (a huge scale can overflow)
+// and at least one triangle left after `dropped` degenerate ones were removed.
+void check_placed_mesh(const TriangleMesh& mesh, size_t dropped, const std::string& key, const SourceMap& sources);
+
 // Every other semantic rule, on a scene whose structure and types the loader has checked.
-// Throws on the first violation found (settings, camera, spheres in file order, then the
-// scene-wide emitter rule).
+// Throws on the first violation found (settings, camera, spheres in file order, mesh materials,
+// then the scene-wide emitter rule: a sphere or a mesh must emit).
 void validate_scene(const Scene& scene, const SourceMap& sources);
 
 }  // namespace clpt::scene_detail

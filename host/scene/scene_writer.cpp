@@ -1,8 +1,15 @@
+// Scene -> TOML (scene_writer.h): spheres, meshes (file or inline) and the settings.
 #include "scene/scene_writer.h"
 
 #include <toml++/toml.h>
 
+#include <cstdint>
+#include <filesystem>
 #include <sstream>
+#include <system_error>
+#include <vector>
+
+#include "scene/mesh_file.h"
 
 #include "util/atomic_file.h"
 
@@ -39,9 +46,46 @@ toml::table sphere_table(const Sphere& s) {
   return t;
 }
 
+toml::array rows_array(const std::vector<Vec3>& rows) {
+  toml::array out;
+  for (const Vec3& row : rows) out.push_back(vec3_array(row));
+  return out;
+}
+
+toml::array rows_array(const std::vector<std::array<uint32_t, 3>>& rows) {
+  toml::array out;
+  for (const auto& t : rows) out.push_back(toml::array{int64_t(t[0]), int64_t(t[1]), int64_t(t[2])});
+  return out;
+}
+
+// The mesh file `m.file` of the scene `scene_file`, named for a scene file at `written_as`.
+std::string mesh_file_for(const std::string& scene_file, const TriangleMesh& m, const std::string& written_as) {
+  namespace fs = std::filesystem;
+  const fs::path target = fs::absolute(resolve_mesh_path(scene_file, m.file));
+  std::error_code ec;
+  const fs::path relative = fs::relative(target, fs::absolute(fs::path(written_as).parent_path()), ec);
+  return ec || relative.empty() ? target.string() : relative.generic_string();
+}
+
+toml::table mesh_table(const TriangleMesh& m, const std::string& scene_file, const std::string& written_as) {
+  toml::table t{{"name", m.name}};
+  if (!m.file.empty()) {
+    t.insert("file", mesh_file_for(scene_file, m, written_as));
+    t.insert("scale", vec3_array(m.placement.scale));
+    t.insert("rotate_deg", vec3_array(m.placement.rotate_deg));
+    t.insert("translate", vec3_array(m.placement.translate));
+  } else {
+    t.insert("vertices", rows_array(m.positions));
+    if (!m.normals.empty()) t.insert("normals", rows_array(m.normals));
+    t.insert("triangles", rows_array(m.triangles));
+  }
+  t.insert("material", material_table(m.material));
+  return t;
+}
+
 }  // namespace
 
-std::string scene_to_toml(const Scene& scene, const std::string& header) {
+std::string scene_to_toml(const Scene& scene, const std::string& header, const std::string& written_as) {
   const RenderSettings& r = scene.settings;
   const Camera& c = scene.camera;
   toml::table root;
@@ -57,7 +101,10 @@ std::string scene_to_toml(const Scene& scene, const std::string& header) {
                                     {"vertical_fov_deg", c.vertical_fov_deg}});
   toml::array spheres;
   for (const Sphere& s : scene.spheres) spheres.push_back(sphere_table(s));
-  root.insert("sphere", std::move(spheres));
+  if (!spheres.empty()) root.insert("sphere", std::move(spheres));
+  toml::array meshes;
+  for (const TriangleMesh& m : scene.meshes) meshes.push_back(mesh_table(m, scene.file, written_as));
+  if (!meshes.empty()) root.insert("mesh", std::move(meshes));
 
   std::ostringstream out;
   std::istringstream lines(header);
@@ -68,7 +115,7 @@ std::string scene_to_toml(const Scene& scene, const std::string& header) {
 }
 
 void write_scene_file(const std::string& path, const Scene& scene, const std::string& header) {
-  write_file_atomically(path, scene_to_toml(scene, header), "scene");
+  write_file_atomically(path, scene_to_toml(scene, header, path), "scene");
 }
 
 }  // namespace clpt

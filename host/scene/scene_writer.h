@@ -10,7 +10,11 @@
 namespace clpt {
 
 // `header`: comment lines put before the tables (each line is prefixed with "# ").
-std::string scene_to_toml(const Scene& scene, const std::string& header = "");
+// `written_as`: the path the text is for. A mesh read from a file is written as that file (named
+// relative to written_as's directory, or absolute where no relative name exists) with its
+// composed placement; a mesh written inline is written inline, its world positions and normals
+// as they are, with no placement.
+std::string scene_to_toml(const Scene& scene, const std::string& header = "", const std::string& written_as = "");
 
 // Writes scene_to_toml() to `path` atomically; throws Error(OutputError) naming the path.
 void write_scene_file(const std::string& path, const Scene& scene, const std::string& header = "");

@@ -39,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const clpt::Scene scene = clpt::load_scene_string(text, "fuzz.toml");
     // An accepted scene must be a complete one (the loader's contract).
-    if (scene.spheres.empty()) finding("nothing but returned a scene without spheres");
+    if (scene.spheres.empty() && scene.meshes.empty()) finding("nothing but returned a scene without geometry");
   } catch (const clpt::Error& e) {
     // Rejected: every rejection is a bad scene, and its message names the file first.
     if (e.code() != clpt::ExitCode::BadScene) finding("clpt::Error with a code other than BadScene");

@@ -1,0 +1,215 @@
+// Mesh files through assimp (Debian 12: libassimp-dev 5.2). assimp is asked to triangulate,
+// join identical vertices, bake node transforms into the vertices, split meshes by primitive type
+// and validate its own data structure; it is never asked to generate normals. Everything it
+// returns is checked here again before clpt uses it (see mesh_file.h).
+#include "scene/mesh_file.h"
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <system_error>
+
+namespace clpt {
+namespace {
+
+// Joining identical vertices comes after clpt's finiteness check (parse_mesh_file): assimp's
+// joining merges a NaN vertex into another one, and the NaN would go unseen.
+constexpr unsigned kImportFlags = aiProcess_Triangulate | aiProcess_PreTransformVertices |
+                                  aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+constexpr unsigned kJoinFlags = aiProcess_JoinIdenticalVertices;
+
+std::string vec3_text(const aiVector3D& v) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "[%.9g, %.9g, %.9g]", double(v.x), double(v.y), double(v.z));
+  return buffer;
+}
+
+bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string element(const char* what, size_t index, unsigned mesh) {
+  return std::string(what) + " " + std::to_string(index) + " of mesh " + std::to_string(mesh);
+}
+
+size_t triangle_count(const aiMesh& m) {
+  return size_t(std::count_if(m.mFaces, m.mFaces + m.mNumFaces, [](const aiFace& f) { return f.mNumIndices == 3; }));
+}
+
+// Every vertex and normal finite, every normal non-zero; the indices are those of the file's
+// vertices as assimp numbers them before joining identical ones.
+void check_vertices(const aiMesh& m, unsigned index) {
+  for (unsigned v = 0; v < m.mNumVertices; ++v) {
+    if (!finite(m.mVertices[v]))
+      throw MeshFileError(element("vertex", v, index) + " is not finite (got " + vec3_text(m.mVertices[v]) + ")");
+    if (!m.HasNormals()) continue;
+    const aiVector3D& n = m.mNormals[v];
+    if (!finite(n) || (n.x == 0 && n.y == 0 && n.z == 0))
+      throw MeshFileError(element("normal", v, index) + " is zero or not finite (got " + vec3_text(n) + ")");
+  }
+}
+
+// Appends one assimp mesh's triangles and vertices to `out` (vertices renumbered after those
+// already there); `with_normals` says whether the merged mesh keeps normals. Faces of one or two
+// indices (points, lines) are left out: the caller counts them.
+void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& out) {
+  const size_t base = out.positions.size();
+  if (base + m.mNumVertices > std::numeric_limits<uint32_t>::max())
+    throw MeshFileError("more than 2^32 - 1 vertices (clpt's triangles index vertices with 32 bits)");
+  for (unsigned v = 0; v < m.mNumVertices; ++v) {
+    const aiVector3D& p = m.mVertices[v];
+    out.positions.push_back({double(p.x), double(p.y), double(p.z)});
+    if (with_normals) out.normals.push_back({double(m.mNormals[v].x), double(m.mNormals[v].y), double(m.mNormals[v].z)});
+  }
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    const aiFace& face = m.mFaces[f];
+    if (face.mNumIndices != 3) continue;
+    std::array<uint32_t, 3> t{};
+    for (int k = 0; k < 3; ++k) {
+      // assimp's validation checks indices too; this keeps clpt safe should a version not.
+      if (face.mIndices[k] >= m.mNumVertices)
+        throw MeshFileError(element("face", f, index) + " uses vertex " + std::to_string(face.mIndices[k]) +
+                            " of " + std::to_string(m.mNumVertices));
+      t[size_t(k)] = static_cast<uint32_t>(base + face.mIndices[k]);
+    }
+    out.triangles.push_back(t);
+  }
+}
+
+// Where the PLY header's end_header line ends (a line starting with the word, followed by
+// whitespace or the end of the file), or npos.
+size_t ply_header_end(std::string_view bytes) {
+  constexpr std::string_view kLine = "\nend_header";
+  for (size_t at = bytes.find(kLine); at != std::string_view::npos; at = bytes.find(kLine, at + 1)) {
+    const size_t after = at + kLine.size();
+    if (after == bytes.size() || std::isspace(static_cast<unsigned char>(bytes[after]))) return after;
+  }
+  return std::string_view::npos;
+}
+
+// `bytes` with every OBJ `mtllib` statement turned into a comment (its first letter replaced by
+// '#'; the length is unchanged). clpt takes materials from the scene and reads no .mtl file, and
+// assimp 5.2's OBJ reader crashed (SEGV) on an `mtllib` line followed by a line starting with
+// "map_K" (found by fuzz_mesh_file).
+std::string without_obj_material_libraries(std::string_view bytes) {
+  std::string out(bytes);
+  constexpr std::string_view kStatement = "mtllib";
+  for (size_t line = 0; line < out.size();) {
+    size_t at = line;
+    while (at < out.size() && (out[at] == ' ' || out[at] == '\t')) ++at;
+    if (out.compare(at, kStatement.size(), kStatement) == 0) out[at] = '#';
+    const size_t end = out.find('\n', line);
+    line = end == std::string::npos ? out.size() : end + 1;
+  }
+  return out;
+}
+
+// Inputs on which assimp 5.2 does not come back, refused before it sees them (found by
+// tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks").
+void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string& extension) {
+  // A PLY header without its end_header line: assimp's PLY reader loops for minutes (or for
+  // ever) looking for it, even on a 200-byte file. "end_header" elsewhere (in a comment) is not
+  // enough: it must start a line and end at whitespace or the end of the file.
+  // OBJ is text; one with NUL bytes in it made assimp's OBJ reader crash (SEGV).
+  if (extension == "obj") {
+    const size_t nul = bytes.find('\0');
+    if (nul != std::string_view::npos)
+      throw MeshFileError("an OBJ file is text, but byte " + std::to_string(nul) + " is NUL");
+  }
+  if (extension != "ply") return;
+  const size_t header_end = ply_header_end(bytes);
+  if (header_end == std::string_view::npos) throw MeshFileError("the PLY header has no 'end_header' line");
+  // The PLY header is ASCII text by the format's definition. A header with other bytes in its
+  // property lines made assimp's triangulation fail an internal assertion and abort the process.
+  for (size_t i = 0; i < header_end; ++i) {
+    const unsigned char c = static_cast<unsigned char>(bytes[i]);
+    if (c >= 0x80 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t'))
+      throw MeshFileError("the PLY header has a byte that is not ASCII text at offset " + std::to_string(i));
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& mesh_file_extensions() {
+  static const std::vector<std::string> extensions = {"obj", "ply", "glb", "gltf", "stl"};
+  return extensions;
+}
+
+std::string mesh_file_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const auto& known = mesh_file_extensions();
+  if (std::find(known.begin(), known.end(), ext) != known.end()) return ext;
+  std::string list;
+  for (size_t i = 0; i < known.size(); ++i) list += (i ? ", ." : ".") + known[i];
+  throw MeshFileError("unsupported mesh file type '" + (ext.empty() ? std::string("(no extension)") : "." + ext) +
+                      "' (expected " + list + ")");
+}
+
+std::string resolve_mesh_path(const std::string& scene_file, const std::string& mesh_file) {
+  const std::filesystem::path mesh(mesh_file);
+  if (mesh.is_absolute()) return mesh_file;
+  return (std::filesystem::path(scene_file).parent_path() / mesh).string();
+}
+
+std::string read_mesh_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw MeshFileError("cannot open mesh file: " + (ec ? ec.message() : std::string("No such file or directory")));
+  if (!std::filesystem::is_regular_file(status)) throw MeshFileError("cannot open mesh file: not a regular file");
+  const uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw MeshFileError("cannot open mesh file: " + ec.message());
+  if (size > kMaxMeshFileBytes)
+    throw MeshFileError("mesh file is " + std::to_string(size) + " bytes, over the limit of " +
+                        std::to_string(kMaxMeshFileBytes));
+  errno = 0;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw MeshFileError(std::string("cannot open mesh file: ") + std::strerror(errno));
+  std::string bytes(size, '\0');
+  if (size > 0 && std::fread(bytes.data(), 1, size, file.get()) != size)
+    throw MeshFileError("cannot read mesh file: it changed size while being read");
+  return bytes;
+}
+
+MeshFileContents parse_mesh_file(std::string_view bytes, const std::string& extension) {
+  if (bytes.empty()) throw MeshFileError("the mesh file is empty");
+  refuse_what_assimp_cannot_handle(bytes, extension);
+  const std::string obj_text = extension == "obj" ? without_obj_material_libraries(bytes) : std::string();
+  if (extension == "obj") bytes = obj_text;
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, extension.c_str());
+  if (!scene) throw MeshFileError(std::string("assimp cannot read it: ") + importer.GetErrorString());
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) check_vertices(*scene->mMeshes[i], i);
+  scene = importer.ApplyPostProcessing(kJoinFlags);
+  if (!scene) throw MeshFileError(std::string("assimp cannot join its vertices: ") + importer.GetErrorString());
+  MeshFileContents out;
+  std::vector<unsigned> triangle_meshes;
+  size_t skipped = 0;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+    const size_t triangles = triangle_count(*scene->mMeshes[i]);
+    skipped += scene->mMeshes[i]->mNumFaces - triangles;
+    if (triangles > 0) triangle_meshes.push_back(i);
+  }
+  if (skipped > 0)
+    out.warnings.push_back(std::to_string(skipped) + " point or line primitive(s) skipped (only triangles render)");
+  const auto has_normals = [&](unsigned i) { return scene->mMeshes[i]->HasNormals(); };
+  const bool with_normals =
+      !triangle_meshes.empty() && std::all_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals);
+  if (!with_normals && std::any_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals))
+    out.warnings.push_back("normals ignored: only some of the file's meshes have them (geometric normals shade)");
+  for (unsigned i : triangle_meshes) append_mesh(*scene->mMeshes[i], i, with_normals, out.mesh);
+  if (out.mesh.triangles.empty()) throw MeshFileError("the mesh file has no triangles");
+  return out;
+}
+
+}  // namespace clpt
