@@ -16,7 +16,9 @@
 #  * a rank whose device fails: its part goes to the other rank, the same film;
 #  * every rank's device failing: exit 4 naming each rank, nothing written;
 #  * a rank that dies: the job fails, no output, and its last checkpoint resumes in one process;
-#  * ranks rendering different scenes or seeds: exit 2 naming the rank, nothing written.
+#  * ranks rendering different scenes or seeds: exit 2 naming the rank, nothing written;
+#  * clpt bench over 2 ranks: every row's paths/s on 1 and 2 ranks, printed once, and in --json
+#    (figures positive; never their speed).
 #   mpi_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -172,6 +174,24 @@ grep -q "rank 1 of 2 (host .*) does not render what rank 0 .* renders: rank 1 ha
 [[ $? -eq 2 ]] && grep -q "rank 1 has 'seed: 6', rank 0 'seed: 5'" bad.out || { fail "different seeds"; cat bad.out; }
 [[ -e bad.pfm ]] && fail "disagreeing ranks wrote an image"
 echo "ok: disagreeing ranks stop the job"
+
+# 9. clpt bench over 2 ranks: each row (megakernel, wavefront) rendered on 1 and on 2 ranks; rank 0
+#    alone prints the table, with one line per rank count under each row, and writes the JSON.
+"${mpirun[@]}" -n 2 "$clpt" bench --scenes "$scene" --width 32 --height 24 --spp 2 --warmup 0 --repeat 1 \
+  --json b.json >bench.out 2>&1 || { fail "mpirun -n 2 clpt bench: exit $?"; cat bench.out; }
+rows=$(grep -c "^$scene " bench.out)
+[[ $rows -eq 2 && $(grep -c "^scene " bench.out) -eq 1 && $(grep -c "^    on 1 MPI rank: M paths/s .*, efficiency 100%" bench.out) -eq 2 &&
+  $(grep -c "^    on 2 MPI ranks: M paths/s .*, efficiency [0-9]*%" bench.out) -eq 2 ]] ||
+  { fail "mpirun -n 2 clpt bench: not one table with rows for 1 and 2 ranks"; cat bench.out; }
+python3 - b.json <<'PY' || fail "mpirun -n 2 clpt bench: b.json lacks the rank counts"
+import json, sys
+rows = json.load(open(sys.argv[1]))["rows"]
+assert len(rows) == 2, rows
+for row in rows:
+    assert [k["ranks"] for k in row["ranks"]] == [1, 2], row
+    assert all(k["paths_per_s"]["median"] > 0 and k["efficiency"] > 0 for k in row["ranks"]), row
+PY
+echo "ok: clpt bench over 2 ranks reports 1 and 2 ranks"
 
 [[ $failures -eq 0 ]] && echo "mpi_cli: all passed"
 exit $((failures > 0))

@@ -1,5 +1,6 @@
 // `clpt bench`: the benchmark matrix (tools/bench.h), as a table and optionally JSON, with an
-// optional comparison against a saved JSON baseline.
+// optional comparison against a saved JSON baseline. Under an MPI launcher each row also reports
+// its paths/s on the job's first 1 .. K ranks and the efficiency; rank 0 alone prints and writes.
 #include <cstdio>
 #include <memory>
 
@@ -24,11 +25,9 @@ struct BenchOptions {
 };
 
 int run(BenchConfig config, const BenchOptions& o) {
-  // Under a launcher every rank would run the whole matrix at once, competing for the machine.
-  if (const std::string launcher = mpi_launcher_variable(); !launcher.empty())
-    throw Error(ExitCode::Usage, "clpt bench was started by an MPI launcher (" + launcher +
-                                     " is set), but it does not run over MPI ranks; scripts/mpi_scaling.sh "
-                                     "measures how a render scales over 1..K ranks (docs/mpi.md)");
+  // Under an MPI launcher: the job's ranks (loads MPI); otherwise this process alone, a plain bench.
+  RankGroup& ranks = process_rank_group();
+  config.ranks = &ranks;
   for (const std::string& f : o.forms)
     config.forms.push_back(f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel);
   config.megakernel_loops.clear();
@@ -40,7 +39,8 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.precisions.clear();
   for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
   if (config.devices.empty()) config.devices = {"best"};
-  const std::vector<BenchRow> rows = run_bench(config, true);
+  const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
+  if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
   std::printf("%s", bench_table(rows).c_str());
   if (!o.json.empty()) write_file_atomically(o.json, bench_json(rows, config), "--json");
   if (o.baseline.empty()) return 0;

@@ -1,3 +1,4 @@
+// RankGroup (rank_group.h): the group of one process, and the loading of the MPI module under a launcher.
 #include "render/rank_group.h"
 
 #include <dlfcn.h>
@@ -24,6 +25,11 @@ class SingleProcess final : public RankGroup {
   }
   void broadcast(std::vector<uint8_t>&) override {}
   std::vector<std::vector<uint8_t>> gather(const std::vector<uint8_t>& mine) override { return {mine}; }
+  void idle_barrier() override {}
+  std::unique_ptr<RankGroup> first_ranks(int n) override {
+    if (n != 1) throw Error(ExitCode::Failure, "first_ranks(" + std::to_string(n) + ") of a group of one");
+    return single_process_group();
+  }
   [[noreturn]] void abort(int exit_code) override { std::_Exit(exit_code); }
   void finish() override {}
 };
@@ -42,7 +48,7 @@ std::unique_ptr<RankGroup> load_mpi_group(const std::string& launcher) {
 #endif
   // RTLD_GLOBAL: Open MPI loads its own components (MCA plugins) with dlopen, and they bind to
   // libmpi's and libopen-pal's symbols.
-  const LoadedModule m = load_module(candidates, "clpt_mpi_rank_group_v1", RTLD_NOW | RTLD_GLOBAL);
+  const LoadedModule m = load_module(candidates, "clpt_mpi_rank_group_v2", RTLD_NOW | RTLD_GLOBAL);
   if (!m.entry)
     throw Error(ExitCode::Usage, started + ", but the MPI module " + kModuleName +
                                      " cannot be loaded; set CLPT_MPI_MODULE to its path. Tried:" + m.tried);

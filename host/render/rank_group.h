@@ -32,6 +32,16 @@ class RankGroup {
   virtual void broadcast(std::vector<uint8_t>& bytes) = 0;
   // Every rank's `mine`, in rank order, at rank 0; an empty list on the other ranks.
   virtual std::vector<std::vector<uint8_t>> gather(const std::vector<uint8_t>& mine) = 0;
+  // Returns when every rank has called it. A rank waiting here sleeps between checks instead of
+  // spinning as MPI's blocking collectives do, so idle ranks leave the cores to working ones.
+  virtual void idle_barrier() = 0;
+
+  // Collective: the group of this group's ranks 0 .. n-1 (1 <= n <= size()), rank r here being
+  // rank r there, returned on those ranks; null on the others. `clpt bench` measures a render on
+  // the first 1, 2, .. K ranks of a job with it. The group of one process returns a group of one
+  // for n = 1. A sub-group's abort() ends the whole job; its finish() does nothing (the job is
+  // left through the process group).
+  virtual std::unique_ptr<RankGroup> first_ranks(int n) = 0;
 
   // Ends the whole job at once with `exit_code` (an error on one rank that the others cannot
   // know of would leave them waiting in a collective). Does not return.
@@ -64,4 +74,4 @@ std::unique_ptr<RankGroup> single_process_group();
 
 // The MPI module's one entry point (the version in the name changes with RankGroup). Returns a
 // group that has called MPI_Init, or null with the reason in `error`.
-extern "C" clpt::RankGroup* clpt_mpi_rank_group_v1(std::string* error);
+extern "C" clpt::RankGroup* clpt_mpi_rank_group_v2(std::string* error);

@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -14,9 +16,12 @@
 #include "kernels/kernel_options.h"
 #include "render/film.h"
 #include "render/device_pool.h"
+#include "render/rank_group.h"
 #include "render/render_plan.h"
+#include "render/render_session.h"
 #include "scene/device_scene.h"
 #include "scene/scene_loader.h"
+#include "util/byte_buffer.h"
 #include "util/error.h"
 #include "util/clock.h"
 
@@ -40,6 +45,21 @@ std::vector<DeviceInfo> resolve_devices(const std::vector<std::string>& specs, c
   return out;
 }
 
+// The request of one matrix cell (clpt's kernel cache off: the row times builds).
+RenderRequest cell_request(const Scene& scene, const BenchConfig& c, ExecutionForm form, bool generic,
+                           Precision precision, size_t local_size, MegakernelLoop loop) {
+  RenderRequest request;
+  request.scene = scene;
+  request.form = form;
+  request.megakernel_loop = loop;
+  request.precision = precision;
+  request.generic_kernel = generic;
+  request.local_size = local_size;
+  request.paths_in_flight = c.paths_in_flight;
+  request.use_kernel_cache = false;
+  return request;
+}
+
 // One matrix cell, run as a render runs it: one plan (render_plan.h), its device pool and the
 // same passes (launches sized as in a render). Builds cold (options no driver cache has seen),
 // then twice more, the second timed (the driver's cache, clpt's own off), warms up, times
@@ -53,15 +73,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.precision = precision_name(precision);
   row.estimator = scene.settings.estimator;
   row.device = device.name;
-  RenderRequest request;
-  request.scene = scene;
-  request.form = form;
-  request.megakernel_loop = loop;
-  request.precision = precision;
-  request.generic_kernel = generic;
-  request.local_size = local_size;
-  request.paths_in_flight = c.paths_in_flight;
-  request.use_kernel_cache = false;
+  const RenderRequest request = cell_request(scene, c, form, generic, precision, local_size, loop);
   const RenderPlan plan = plan_render(request, {device});
   const DevicePlan& planned = plan.devices.front();
   const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
@@ -98,6 +110,67 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.paths_per_s = spread_of(paths_per_s);
   row.segments_per_s = spread_of(segments_per_s);
   for (const auto& [label, v] : stage_runs) row.stage_seconds.emplace_back(label, spread_of(v).median);
+  return row;
+}
+
+// Collective over `group`: `work` on the ranks where `takes_part` (rank 0 always), while the
+// others idle (idle_barrier). A JobError from `work` (thrown together on every rank taking part,
+// rank 0 among them) is rethrown on every rank of `group`, so that all of them leave the job in
+// order rather than some waiting for ever.
+void on_some_ranks(RankGroup& group, bool takes_part, const std::function<void()>& work) {
+  ByteWriter status;  // empty: `work` succeeded
+  if (takes_part) try {
+      work();
+    } catch (const JobError& e) {
+      status.put(int32_t(e.code())).put(std::string(e.what()));
+    }
+  group.idle_barrier();
+  group.broadcast(status.bytes());
+  if (status.bytes().empty()) return;
+  ByteReader reader(status.bytes());
+  const auto code = ExitCode(reader.get<int32_t>());
+  throw JobError(code, reader.get_string());
+}
+
+// Collective over `group`: the cell's render (run_render, c.spp samples per pixel) on its first
+// n ranks for n = 1 .. K, the ranks past n idle; at rank 0 the rates (RankRate), elsewhere none.
+std::vector<RankRate> rank_scaling(const BenchConfig& c, RenderRequest request, const DeviceInfo& device,
+                                   RankGroup& group) {
+  request.device = std::to_string(device.index);  // each rank's device of that index
+  request.scene.settings.spp = c.spp;
+  request.use_kernel_cache = true;  // the builds are not timed here
+  std::vector<RankRate> out;
+  for (int n = 1; n <= group.size(); ++n) {
+    const std::unique_ptr<RankGroup> sub = group.first_ranks(n);
+    std::vector<double> rates;
+    on_some_ranks(group, sub != nullptr, [&] {
+      request.ranks = sub.get();
+      for (int run = 0; run < c.warmup + c.repeat; ++run) {
+        RenderReport report;
+        run_render(request, report);
+        if (run >= c.warmup) rates.push_back(double(report.paths) / std::max(report.render_seconds, 1e-9));
+      }
+    });
+    if (!group.coordinator()) continue;
+    RankRate rate;
+    rate.ranks = n;
+    rate.paths_per_s = spread_of(rates);
+    const double one_rank = out.empty() ? rate.paths_per_s.median : out.front().paths_per_s.median;
+    rate.efficiency = rate.paths_per_s.median / (n * one_rank);
+    out.push_back(rate);
+  }
+  return out;
+}
+
+// One row of the matrix: bench_cell; in an MPI job bench_cell on rank 0 alone, then the scaling.
+BenchRow bench_row(const BenchConfig& c, const Scene& scene, const DeviceInfo& device, ExecutionForm form,
+                   bool generic, Precision precision, size_t local_size, MegakernelLoop loop) {
+  if (!c.ranks || c.ranks->size() == 1) return bench_cell(c, scene, device, form, generic, precision, local_size, loop);
+  RankGroup& group = *c.ranks;
+  BenchRow row;
+  on_some_ranks(group, group.coordinator(),
+                [&] { row = bench_cell(c, scene, device, form, generic, precision, local_size, loop); });
+  row.ranks = rank_scaling(c, cell_request(scene, c, form, generic, precision, local_size, loop), device, group);
   return row;
 }
 
@@ -143,7 +216,7 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
                                  execution_form_name(form), form == ExecutionForm::Megakernel ? " loop " : "",
                                  form == ExecutionForm::Megakernel ? megakernel_loop_name(loop) : "",
                                  generic ? "generic" : "specialised", local_size, device->name.c_str());
-                  rows.push_back(bench_cell(c, scene, *device, form, generic, precision, local_size, loop));
+                  rows.push_back(bench_row(c, scene, *device, form, generic, precision, local_size, loop));
                 }
             }
         }
@@ -177,6 +250,11 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
       }
       o << "; " << r.paths_in_flight << " paths in flight\n";
     }
+    for (const RankRate& k : r.ranks) {
+      std::snprintf(line, sizeof line, "    on %d MPI rank%s: M paths/s %s, efficiency %.0f%%\n", k.ranks,
+                    k.ranks == 1 ? "" : "s", format_rate(k.paths_per_s).c_str(), 100 * k.efficiency);
+      o << line;
+    }
   }
   return o.str();
 }
@@ -193,14 +271,20 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
     auto spread = [](const Spread& s) {
       return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max}};
     };
-    j["rows"].push_back({{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
-                         {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
-                         {"device", r.device}, {"local_size", r.local_size},
-                         {"paths_in_flight", r.paths_in_flight},
-                         {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
-                         {"paths_per_s", spread(r.paths_per_s)},
-                         {"segments_per_s", spread(r.segments_per_s)},
-                         {"stage_seconds", stages}});
+    nlohmann::json row = {{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
+                     {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
+                     {"device", r.device}, {"local_size", r.local_size},
+                     {"paths_in_flight", r.paths_in_flight},
+                     {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
+                     {"paths_per_s", spread(r.paths_per_s)},
+                     {"segments_per_s", spread(r.segments_per_s)},
+                     {"stage_seconds", stages}};
+    if (!r.ranks.empty()) {
+      row["ranks"] = nlohmann::json::array();
+      for (const RankRate& k : r.ranks)
+        row["ranks"].push_back({{"ranks", k.ranks}, {"paths_per_s", spread(k.paths_per_s)}, {"efficiency", k.efficiency}});
+    }
+    j["rows"].push_back(row);
   }
   return j.dump(2) + "\n";
 }

@@ -2,6 +2,8 @@
 // (specialised or generic) x precision preset x estimator x device x work-group size, each with cold and cached kernel build times, warm-up and repeated timed
 // passes (median and spread of paths/s and ray segments/s), and per-stage device time of the
 // wavefront from OpenCL profiling events. The same renderers as `clpt render`, nothing else.
+// In an MPI job (`mpirun -n K clpt bench`, docs/mpi.md) each row is also rendered as `clpt render`
+// renders over ranks, on the job's first 1, 2, .. K ranks: paths/s and efficiency per rank count.
 #pragma once
 
 #include <string>
@@ -12,6 +14,8 @@
 #include "scene/scene.h"
 
 namespace clpt {
+
+class RankGroup;
 
 struct BenchConfig {
   std::vector<std::string> scenes;             // scene files
@@ -27,10 +31,25 @@ struct BenchConfig {
   int warmup = 1, repeat = 5;
   uint32_t paths_in_flight = 0;                // wavefront; 0: the device's default
   Sampler sampler = Sampler::Jitter;           // one for the whole matrix (rows do not name it)
+  // The ranks of an MPI job; null or a group of one: a plain bench. A larger group: every rank
+  // calls run_bench with the same config and must resolve the same matrix (as many --devices,
+  // the same fp64 support); rank 0 times each row alone, the others idle, then the row's render
+  // runs on the first 1 .. K ranks (BenchRow::ranks).
+  RankGroup* ranks = nullptr;
 };
 
 struct Spread {
   double median = 0, min = 0, max = 0;
+};
+
+// A row's render on the first `ranks` ranks of an MPI job: run_render over that sub-group (its
+// paths over the wall time of its passes, as the render summary's combined rate; kernel builds and
+// start-up excluded), warm-up and repeat as the row's; efficiency = median paths/s at `ranks`
+// over `ranks` times the median at 1 rank.
+struct RankRate {
+  int ranks = 1;
+  Spread paths_per_s;
+  double efficiency = 1;
 };
 
 struct BenchRow {
@@ -41,9 +60,11 @@ struct BenchRow {
   double build_cold_s = 0, build_cached_s = 0;
   Spread paths_per_s, segments_per_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
+  std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty
   std::string key() const;  // identifies the row across runs (for --baseline)
 };
 
+// In an MPI job the rows are rank 0's (the other ranks' rows hold no figures); collective.
 std::vector<BenchRow> run_bench(const BenchConfig& config, bool show_progress);
 
 std::string bench_table(const std::vector<BenchRow>& rows);
