@@ -1,5 +1,6 @@
 #include "kernels/kernel_options.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "scene/device_scene.h"
@@ -107,6 +108,22 @@ bool spheres_in_hierarchy(const Scene& scene) {
   return static_cast<int>(scene.spheres.size()) > kMaxLoopSpheres;
 }
 
+std::vector<bool> loop_spheres(const Scene& scene) {
+  const size_t n = scene.spheres.size();
+  if (!spheres_in_hierarchy(scene)) return std::vector<bool>(n, true);
+  std::vector<double> radii;
+  for (const Sphere& s : scene.spheres) radii.push_back(s.radius);
+  std::nth_element(radii.begin(), radii.begin() + long(n / 2), radii.end());
+  const double large = 10 * radii[n / 2];
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return scene.spheres[a].radius > scene.spheres[b].radius; });
+  std::vector<bool> in_loop(n, false);
+  for (size_t k = 0; k < std::min<size_t>(n, 8) && scene.spheres[order[k]].radius >= large; ++k) in_loop[order[k]] = true;
+  return in_loop;
+}
+
 KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
   f.precision = precision;
@@ -118,7 +135,8 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.glass = false;
   f.mirror = false;
   f.spheres_in_bvh = spheres_in_hierarchy(scene);
-  f.sphere_count = f.spheres_in_bvh ? 0 : static_cast<int>(scene.spheres.size());
+  const std::vector<bool> in_loop = loop_spheres(scene);
+  f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
   f.triangles = false;
   const auto uses = [&f](const Material& m) {
     f.phong |= m.type == MaterialType::Phong;
@@ -201,8 +219,9 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   o << "  sphere loop: "
     << (features.generic ? std::string("run-time sphere count (generic kernel)")
         : features.spheres_in_bvh
-            ? "none: the spheres are hierarchy primitives (more than " + std::to_string(kMaxLoopSpheres) +
-                  " spheres, the measured crossover)"
+            ? "fixed at the scene's " + std::to_string(features.sphere_count) +
+                  " large spheres; the others are hierarchy primitives (more than " +
+                  std::to_string(kMaxLoopSpheres) + " spheres, the measured crossover)"
         : "fixed at the scene's " + std::to_string(features.sphere_count) + " spheres (at most " +
               std::to_string(kMaxLoopSpheres) + ": a loop beats traversal)")
     << "\n";

@@ -67,11 +67,16 @@ std::optional<SceneLoops> parse_scene_loops(const std::string& name);
 bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device);
 
 // Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
-// of the bounding volume hierarchy (kernels/bvh.cl), so its kernel has no sphere loop.
+// of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
 // The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
 constexpr int kMaxLoopSpheres = 16;
 // Whether the scene's spheres are hierarchy primitives (more than kMaxLoopSpheres of them).
 bool spheres_in_hierarchy(const Scene& scene);
+// Which spheres the kernels' loop tests (the others are hierarchy primitives): all of them when
+// there are at most kMaxLoopSpheres; else those of radius at least 10x the median, at most 8 of
+// them (the book's walls, light and balls among pebbles): a wall's box would cover every other
+// box, so each ray would visit the wall's leaf on any path through the tree.
+std::vector<bool> loop_spheres(const Scene& scene);
 
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)

@@ -114,7 +114,8 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
           request.paths_in_flight ? request.paths_in_flight : WavefrontRenderer::default_paths_in_flight(d.device);
     }
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
-    d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device);
+    d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
+                                      triangle_count(scene));
     plan.devices.push_back(std::move(d));
   }
   return plan;

@@ -153,9 +153,15 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   std::vector<BvhPrimitive> prims;
   add_triangles(scene, out, prims);
   const bool spheres_in_bvh = spheres_in_hierarchy(scene);
-  out.loop_spheres = spheres_in_bvh ? 0u : static_cast<uint32_t>(scene.spheres.size());
+  const std::vector<bool> in_loop = loop_spheres(scene);
+  // The sphere buffer: the loop's spheres first (scene order), then the hierarchy's (leaf order).
+  std::vector<uint32_t> sphere_order;
+  for (size_t i = 0; i < in_loop.size(); ++i)
+    if (in_loop[i]) sphere_order.push_back(static_cast<uint32_t>(i));
+  out.loop_spheres = static_cast<uint32_t>(sphere_order.size());
   if (spheres_in_bvh) {
     for (size_t i = 0; i < scene.spheres.size(); ++i) {
+      if (in_loop[i]) continue;
       BvhPrimitive prim;
       prim.box = sphere_box(sub(scene.spheres[i].center, cam.position), scene.spheres[i].radius);
       prim.kind = PrimitiveKind::Sphere;
@@ -167,9 +173,12 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
   if (spheres_in_bvh) {
-    out.spheres = permuted(out.spheres, out.bvh.sphere_order);
+    sphere_order.insert(sphere_order.end(), out.bvh.sphere_order.begin(), out.bvh.sphere_order.end());
+    for (GpuBvhNode& node : out.bvh.nodes)
+      if (node.count & CLPT_BVH_SPHERE_LEAF) node.first += out.loop_spheres;
+    out.spheres = permuted(out.spheres, sphere_order);
     std::vector<uint32_t> new_index(scene.spheres.size());
-    for (size_t i = 0; i < out.bvh.sphere_order.size(); ++i) new_index[out.bvh.sphere_order[i]] = uint32_t(i);
+    for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);
     for (GpuLight& light : out.lights) light.sphere = new_index[light.sphere];
   }
 

@@ -12,10 +12,10 @@
 namespace clpt {
 
 struct DeviceScene {
-  // Every sphere: the loop's in the scene's order, or, when they are hierarchy primitives
-  // (spheres_in_hierarchy), in the hierarchy's leaf order.
+  // Every sphere: first the loop's (kernel_options.h, loop_spheres) in the scene's order, then
+  // the hierarchy's primitives in its leaf order.
   std::vector<GpuSphere> spheres;
-  uint32_t loop_spheres = 0;  // spheres the kernels test in their loop: all of them, or 0
+  uint32_t loop_spheres = 0;  // spheres the kernels test in their loop (the first ones)
   std::vector<GpuLight> lights;  // emitters that next-event estimation samples (light_caps())
   // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
   std::vector<GpuTriangle> triangles;
