@@ -55,12 +55,14 @@ __kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint slo
   path_store(slot_begin + i, job_index, &p CLPT_STATE_ARGS);
 }
 
-__kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuBvhNode* nodes,
-                           __global const GpuTriangle* triangles, const GpuRenderParams params, uint count
-                               CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
+/* Takes every scene buffer, as wf_shade does (the host binds them alike); reads only geometry. */
+__kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                           __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                           __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
+                           uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const SceneBuffers scene = scene_buffers(spheres, 0, nodes, triangles, 0);
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const PathState p = path_load(i, &params CLPT_STATE_ARGS);
   const Hit hit = path_intersect(&p, &scene, &params);
   hit_t[i] = hit.t;

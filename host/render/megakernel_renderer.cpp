@@ -33,13 +33,9 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
     results_ = Buffer(ctx_, jobs * sizeof(cl_float4), CL_MEM_READ_WRITE, "job results");
   const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
-  kernel_.set_arg(0, scene_.spheres);
-  kernel_.set_arg(1, scene_.lights);
-  kernel_.set_arg(2, scene_.nodes);
-  kernel_.set_arg(3, scene_.triangles);
-  kernel_.set_arg(4, scene_.triangle_shading);
-  kernel_.set_arg(5, params);
-  kernel_.set_arg(6, results_);
+  const cl_uint next = bind_scene(kernel_, 0, scene_);
+  kernel_.set_arg(next, params);
+  kernel_.set_arg(next + 1, results_);
   film_.set_arg(0, params);
   film_.set_arg(1, results_);
   film_.set_arg(2, pass_);

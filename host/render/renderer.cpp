@@ -44,4 +44,10 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   return set;
 }
 
+cl_uint Renderer::bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene) {
+  for (const Buffer* b : {&scene.spheres, &scene.lights, &scene.nodes, &scene.triangles, &scene.triangle_shading})
+    kernel.set_arg(first++, *b);
+  return first;
+}
+
 }  // namespace clpt

@@ -51,6 +51,8 @@ class Renderer {
     Buffer spheres, lights, nodes, triangles, triangle_shading;
   };
   static SceneBufferSet upload_scene(DeviceContext& ctx, const DeviceScene& scene);
+  // Sets the five scene buffers as arguments first, first + 1, ...; returns the next index.
+  static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
 
   double build_seconds_ = 0;
 };

@@ -93,25 +93,19 @@ void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_beg
 // Closest hits, then shading, which stores the survivors densely into the other state set; swaps
 // the sets and returns the number of survivors.
 uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint32_t active) {
-  intersect_.set_arg(0, scene_.spheres);
-  intersect_.set_arg(1, scene_.nodes);
-  intersect_.set_arg(2, scene_.triangles);
-  intersect_.set_arg(3, params);
-  intersect_.set_arg(4, active);
-  bind(intersect_, bind(intersect_, 5, scratch_), state_);
+  const cl_uint after_scene = bind_scene(intersect_, 0, scene_);
+  intersect_.set_arg(after_scene, params);
+  intersect_.set_arg(after_scene + 1, active);
+  bind(intersect_, bind(intersect_, after_scene + 2, scratch_), state_);
   record("intersect", ctx_.launch_profiled(intersect_, active, local_size_, "wf_intersect"));
   const cl_uint zero = 0;
   ctx_.write_async(survivors_, &zero, sizeof zero);
-  shade_.set_arg(0, scene_.spheres);
-  shade_.set_arg(1, scene_.lights);
-  shade_.set_arg(2, scene_.nodes);
-  shade_.set_arg(3, scene_.triangles);
-  shade_.set_arg(4, scene_.triangle_shading);
-  shade_.set_arg(5, params);
-  shade_.set_arg(6, active);
-  shade_.set_arg(7, results_);
-  shade_.set_arg(8, survivors_);
-  bind(shade_, bind(shade_, bind(shade_, 9, scratch_), state_), next_state_);
+  bind_scene(shade_, 0, scene_);
+  shade_.set_arg(after_scene, params);
+  shade_.set_arg(after_scene + 1, active);
+  shade_.set_arg(after_scene + 2, results_);
+  shade_.set_arg(after_scene + 3, survivors_);
+  bind(shade_, bind(shade_, bind(shade_, after_scene + 4, scratch_), state_), next_state_);
   record("shade", ctx_.launch_profiled(shade_, active, local_size_, "wf_shade"));
   cl_uint survivors = 0;
   ctx_.read(survivors_, &survivors, sizeof survivors);  // blocking: `zero` lives until here
