@@ -1,4 +1,4 @@
-/* bsdf.cl: sampling the book's three materials.
+/* bsdf.cl: sampling the book's three materials and the mirror.
  *
  * Each sampler takes the incoming ray direction `d` (unit, travelling towards the surface), the
  * outward unit normal `n` and uniforms `u`, and returns the next direction; *weight receives
@@ -8,7 +8,8 @@
  *  - Normalised Phong: f = rho (n+2)/(2 pi) cos^n(alpha) around the mirror direction, sampled
  *    from the cos^n lobe, weight rho (n+2)/(n+1) cos(theta_out); 0 below the surface.
  *  - Glass: exact unpolarised Fresnel, total internal reflection, reflect with probability Fr,
- *    else refract with radiance scaled by (n_from / n_to)^2; weight rho (times that scale). */
+ *    else refract with radiance scaled by (n_from / n_to)^2; weight rho (times that scale).
+ *  - Mirror: the perfect specular reflection about n; weight rho. */
 #ifndef CLPT_BSDF_CL
 #define CLPT_BSDF_CL
 
@@ -42,6 +43,12 @@ CLPT_INLINE Vec3 bsdf_phong_sample(Vec3 d, Vec3 n, Vec3 rho, real exponent, Unif
   const real cos_out = v3_dot(n, out);
   *weight = v3_scale(rho, cos_out > (real)0 ? (exponent + (real)2) / (exponent + (real)1) * cos_out : (real)0);
   return out;
+}
+
+/* Perfect mirror: the reflection about n (either side), weight rho; a delta lobe like glass's. */
+CLPT_INLINE Vec3 bsdf_mirror_sample(Vec3 d, Vec3 n, Vec3 rho, Vec3* weight) {
+  *weight = rho;
+  return reflect_about(d, n);
 }
 
 /* Evaluation for next-event estimation: f cos(theta_wi) towards wi (unit, leaving the surface)

@@ -50,9 +50,10 @@ CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return s->radius; 
 #endif
 
 typedef struct Hit {
-  real t;     /* distance along the unit ray, CLPT_NO_HIT when nothing was hit */
-  int sphere; /* index into the sphere buffer, -1 when nothing was hit */
-  CLPT_ABI_PAD(int, 3)
+  real t;       /* distance along the unit ray, CLPT_NO_HIT when nothing was hit */
+  int sphere;   /* index into the sphere buffer, -1 when no sphere was hit */
+  int triangle; /* index into the triangle buffer, -1 when no triangle was hit (bvh.cl) */
+  CLPT_ABI_PAD(int, 2)
 } Hit;
 
 /* Which formula (kernel_options.cpp decides, from the precision preset):
@@ -108,7 +109,9 @@ CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3
 }
 #endif
 
-/* Closest hit over all spheres but `skip` (-1: none); a linear scan, the book's scenes have 8.
+/* Closest hit over the loop's spheres but `skip` (-1: none); a linear scan, the book's scenes
+ * have 8. A scene of more than a few spheres puts them in the hierarchy instead (bvh.cl), and its
+ * specialised kernel fixes CLPT_SPHERE_COUNT at 0.
  * A scene-specialised build fixes CLPT_SPHERE_COUNT. With CLPT_UNROLL_SCENE_LOOPS (the host's
  * choice for CPUs, kernel_options.cpp) the loop unrolls into straight-line code, which PoCL can
  * vectorise across work-items; without (GPUs) it stays a loop, whose one sphere at a time needs
@@ -122,6 +125,7 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
   Hit hit;
   hit.t = CLPT_NO_HIT;
   hit.sphere = -1;
+  hit.triangle = -1;
 #ifdef CLPT_SPHERE_COUNT
   (void)sphere_count;
 #if CLPT_UNROLL_SCENE_LOOPS

@@ -3,7 +3,8 @@
  * One work-item per path (job) of the launch: job j is sample sample_begin + j / pixel_count of
  * pixel pixel_begin + j % pixel_count. It runs the stages of path.cl in a loop, one segment per
  * iteration, until the path ends, and leaves its result for film_sum_jobs (film.cl). Reads: the
- * sphere buffer and GpuRenderParams, and the light buffer (nee). Writes: results.
+ * geometry (spheres; the hierarchy and triangles, bvh.cl) and GpuRenderParams, and the light
+ * buffer (nee). Writes: results.
  *
  * Two loops, chosen by the host (kernel_options.cpp, CLPT_LOCKSTEP_GROUP):
  *  - per path (GPUs): each work-item loops until its own path ends; the GPU's SIMT hardware masks
@@ -29,9 +30,12 @@
  * an address computed once and kept across a barrier becomes a 64-bit value in that region, which
  * halves the width PoCL vectorises it with. */
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                           __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                           __global const GpuTriangleShading* triangle_shading,
                            const GpuRenderParams params, __global float* results) {
   __local uint alive_of[CLPT_LOCKSTEP_GROUP];
   __local uint any_alive;
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const uint jobs = job_count(&params);
   const uint job = (uint)get_global_id(0);
   const uint lid = (uint)get_local_id(0);
@@ -42,7 +46,7 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   path.alive = active ? 1 : 0;
   for (;;) {
     PathState next = path;
-    path_shade(&next, path_intersect(&path, spheres, &params), spheres, lights, &params);
+    path_shade(&next, path_intersect(&path, &scene, &params), &scene, &params);
     path = path_select(path.alive != 0, next, path);
     barrier(CLK_LOCAL_MEM_FENCE);
     alive_of[lid] = (uint)path.alive;
@@ -59,13 +63,16 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
 }
 #else
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                           __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                           __global const GpuTriangleShading* triangle_shading,
                            const GpuRenderParams params, __global float* results) {
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const uint job = (uint)get_global_id(0);
   if (job >= job_count(&params)) return;
   PathState path = path_begin(&params, params.pixel_begin + job % params.pixel_count,
                               params.sample_begin + job / params.pixel_count);
   while (path.alive) {
-    path_shade(&path, path_intersect(&path, spheres, &params), spheres, lights, &params);
+    path_shade(&path, path_intersect(&path, &scene, &params), &scene, &params);
   }
   job_result_store(results, job, job_count(&params), path.radiance, path.segments);
 }

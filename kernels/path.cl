@@ -10,8 +10,9 @@
  *  - nee: at every Lambertian or Phong vertex that may still scatter, one shadow ray towards a
  *    point sampled on a light (light.cl); its contribution and that of a BSDF-sampled ray hitting
  *    the light are weighted by the power heuristic (Veach's MIS, beta = 2), so the two strategies
- *    together count every light path once. Glass is specular: no shadow ray there, and a light
- *    hit after glass (or by the camera ray) has weight 1.
+ *    together count every light path once. Glass and the mirror are specular: no shadow ray
+ *    there, and a light hit after them (or by the camera ray) has weight 1. Emitting triangles
+ *    are found by BSDF sampling only (they are not in the light list yet).
  * Segment `bounce` = 0 is the camera ray; at most max_bounces scattering events follow, and
  * emission found at the end of the last segment still counts. A shadow ray from a vertex that may
  * scatter is the same segment as the BSDF ray it competes with, so both estimators sum the same
@@ -20,7 +21,8 @@
  * and divides the survivors by q: the expectation is unchanged.
  *
  * Specialisation (decided on the host in kernel_options.cpp, one place): CLPT_HAS_PHONG,
- * CLPT_HAS_GLASS and CLPT_HAS_RR compile those in; CLPT_ESTIMATOR fixes the estimator (the
+ * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading) and
+ * CLPT_HAS_BVH (traversal, bvh.cl) compile those in; CLPT_ESTIMATOR fixes the estimator (the
  * generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
@@ -32,6 +34,7 @@
 #include "sampler.cl"
 #include "camera.cl"
 #include "intersect.cl"
+#include "bvh.cl"
 #include "bsdf.cl"
 #include "light.cl"
 
@@ -43,6 +46,12 @@
 #endif
 #ifndef CLPT_HAS_RR
 #define CLPT_HAS_RR 1
+#endif
+#ifndef CLPT_HAS_MIRROR
+#define CLPT_HAS_MIRROR 1
+#endif
+#ifndef CLPT_HAS_TRIANGLES
+#define CLPT_HAS_TRIANGLES 1
 #endif
 #ifdef CLPT_ESTIMATOR
 #define CLPT_NEE_COMPILED (CLPT_ESTIMATOR == CLPT_ESTIMATOR_NEE)
@@ -83,53 +92,57 @@ CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint
   return path;
 }
 
-CLPT_INLINE Hit path_intersect(const PathState* path, __global const GpuSphere* spheres,
-                               const GpuRenderParams* params) {
-  return scene_intersect(spheres, params->sphere_count, path->origin, path->direction,
-                         params->ray_epsilon, path->skip_sphere);
+CLPT_INLINE Hit path_intersect(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params) {
+  return scene_closest_hit(scene, params, path->origin, path->direction, path->skip_sphere);
 }
 
 /* Next direction and throughput weight at a non-emitting surface. Materials left out of the
  * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
-CLPT_INLINE Vec3 material_sample(__global const GpuSphere* sphere, Vec3 d, Vec3 normal, Uniform4 u,
-                                 Vec3* weight) {
-  const Vec3 rho = v3_load_global(sphere->reflectance);
-#if CLPT_HAS_PHONG || CLPT_HAS_GLASS /* read only where there is a choice (else an unused variable) */
-  const uint material = sphere->material;
+CLPT_INLINE Vec3 material_sample(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
+  const Vec3 rho = v3_load_global(m->reflectance);
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
+  const uint kind = m->kind;
 #endif
   Vec3 next = bsdf_lambertian_sample(d, normal, rho, u, weight);
 #if CLPT_HAS_PHONG
   Vec3 phong_weight;
-  const Vec3 phong = bsdf_phong_sample(d, normal, rho, (real)sphere->phong_exponent, u, &phong_weight);
-  next = v3_select(material == CLPT_MATERIAL_PHONG, phong, next);
-  *weight = v3_select(material == CLPT_MATERIAL_PHONG, phong_weight, *weight);
+  const Vec3 phong = bsdf_phong_sample(d, normal, rho, (real)m->phong_exponent, u, &phong_weight);
+  next = v3_select(kind == CLPT_MATERIAL_PHONG, phong, next);
+  *weight = v3_select(kind == CLPT_MATERIAL_PHONG, phong_weight, *weight);
 #endif
 #if CLPT_HAS_GLASS
   Vec3 glass_weight;
-  const Vec3 glass = bsdf_glass_sample(d, normal, rho, (real)sphere->ior, u, &glass_weight);
-  next = v3_select(material == CLPT_MATERIAL_GLASS, glass, next);
-  *weight = v3_select(material == CLPT_MATERIAL_GLASS, glass_weight, *weight);
+  const Vec3 glass = bsdf_glass_sample(d, normal, rho, (real)m->ior, u, &glass_weight);
+  next = v3_select(kind == CLPT_MATERIAL_GLASS, glass, next);
+  *weight = v3_select(kind == CLPT_MATERIAL_GLASS, glass_weight, *weight);
+#endif
+#if CLPT_HAS_MIRROR
+  Vec3 mirror_weight;
+  const Vec3 mirror = bsdf_mirror_sample(d, normal, rho, &mirror_weight);
+  next = v3_select(kind == CLPT_MATERIAL_MIRROR, mirror, next);
+  *weight = v3_select(kind == CLPT_MATERIAL_MIRROR, mirror_weight, *weight);
 #endif
   return next;
 }
 
 /* f cos towards wi and the BSDF sampler's density of wi, at a non-emitting surface (next-event
- * estimation). Glass is specular: 0 and 0. */
-CLPT_INLINE Vec3 material_eval(__global const GpuSphere* sphere, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
-  const Vec3 rho = v3_load_global(sphere->reflectance);
-#if CLPT_HAS_PHONG || CLPT_HAS_GLASS /* read only where there is a choice (else an unused variable) */
-  const uint material = sphere->material;
+ * estimation). Glass and the mirror are specular: 0 and 0. */
+CLPT_INLINE Vec3 material_eval(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
+  const Vec3 rho = v3_load_global(m->reflectance);
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
+  const uint kind = m->kind;
 #endif
   Vec3 f_cos = bsdf_lambertian_eval(d, normal, rho, wi, pdf);
 #if CLPT_HAS_PHONG
   real phong_pdf;
-  const Vec3 phong = bsdf_phong_eval(d, normal, rho, (real)sphere->phong_exponent, wi, &phong_pdf);
-  f_cos = v3_select(material == CLPT_MATERIAL_PHONG, phong, f_cos);
-  *pdf = material == CLPT_MATERIAL_PHONG ? phong_pdf : *pdf;
+  const Vec3 phong = bsdf_phong_eval(d, normal, rho, (real)m->phong_exponent, wi, &phong_pdf);
+  f_cos = v3_select(kind == CLPT_MATERIAL_PHONG, phong, f_cos);
+  *pdf = kind == CLPT_MATERIAL_PHONG ? phong_pdf : *pdf;
 #endif
-#if CLPT_HAS_GLASS
-  f_cos = v3_select(material == CLPT_MATERIAL_GLASS, v3_splat((real)0), f_cos);
-  *pdf = material == CLPT_MATERIAL_GLASS ? (real)0 : *pdf;
+#if CLPT_HAS_GLASS || CLPT_HAS_MIRROR
+  const bool specular = kind == CLPT_MATERIAL_GLASS || kind == CLPT_MATERIAL_MIRROR;
+  f_cos = v3_select(specular, v3_splat((real)0), f_cos);
+  *pdf = specular ? (real)0 : *pdf;
 #endif
   return f_cos;
 }
@@ -140,30 +153,90 @@ CLPT_INLINE real mis_power(real a, real b) {
   return a2 + b2 > (real)0 ? a2 / (a2 + b2) : (real)0;
 }
 
-/* Next-event estimation at the vertex hit_point of `sphere` (index), for a path arriving along d:
- * one shadow ray to a light sample; returns the MIS-weighted radiance it brings (throughput
- * not yet applied) and counts the shadow ray in *segments. */
-CLPT_INLINE Vec3 next_event(const PathState* path, __global const GpuSphere* spheres,
-                            __global const GpuLight* lights, const GpuRenderParams* params,
-                            int index, Vec3 hit_point, Vec3 normal, uint* segments) {
+/* Where a path stands on the surface it hit. Spheres: the point o + t d, the outward normal, no
+ * offset (a new ray skips the sphere it leaves, intersect.cl). Triangles (triangle.cl): the point
+ * from the barycentrics with its error bound, new rays offset off the plane; `normal` is the
+ * shading normal, kept only when the incoming ray sees it from the same side as the geometric
+ * normal (else the geometric one shades), and a direction leaving on one side of the shading
+ * normal but the other side of the geometric one carries nothing: no light through a surface at
+ * grazing angles, where interpolated normals tilt past the true plane. */
+typedef struct SurfacePoint {
+  Vec3 point;     /* camera-relative */
+  Vec3 normal;    /* unit normal the BSDF uses */
+#if CLPT_HAS_TRIANGLES
+  TriangleSurface triangle; /* valid when on_triangle */
+#endif
+  int on_triangle;
+  CLPT_ABI_PAD(int, 3)
+} SurfacePoint;
+
+CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Vec3 o, Vec3 d, real t) {
+  SurfacePoint s;
+  __global const GpuSphere* sphere = &scene->spheres[hit.sphere < 0 ? 0 : hit.sphere];
+  s.point = v3_add_scaled(o, d, t);
+  s.normal = sphere_normal_at(sphere, o, d, t);
+  s.on_triangle = 0;
+#if CLPT_HAS_TRIANGLES
+  const int tri = hit.triangle < 0 ? 0 : hit.triangle;
+  s.triangle = triangle_surface(o, d, &scene->triangles[tri], &scene->triangle_shading[tri]);
+  const bool on_triangle = hit.triangle >= 0;
+  const bool consistent = (v3_dot(d, s.triangle.shading) < (real)0) == (v3_dot(d, s.triangle.geometric) < (real)0);
+  s.point = v3_select(on_triangle, s.triangle.point, s.point);
+  s.normal = v3_select(on_triangle, consistent ? s.triangle.shading : s.triangle.geometric, s.normal);
+  s.on_triangle = on_triangle ? 1 : 0;
+#endif
+  return s;
+}
+
+/* Whether direction `dir` leaving the surface is on the same side of the geometric normal as of
+ * the shading normal (always, on a sphere). */
+CLPT_INLINE bool leaves_consistently(const SurfacePoint* s, Vec3 dir) {
+#if CLPT_HAS_TRIANGLES
+  return !s->on_triangle || v3_dot(dir, s->triangle.geometric) * v3_dot(dir, s->normal) > (real)0;
+#else
+  (void)s;
+  (void)dir;
+  return true;
+#endif
+}
+
+/* Origin of a ray leaving the surface along dir. */
+CLPT_INLINE Vec3 leaving_origin(const SurfacePoint* s, Vec3 dir) {
+#if CLPT_HAS_TRIANGLES
+  return v3_select(s->on_triangle != 0, triangle_offset_origin(&s->triangle, dir), s->point);
+#else
+  (void)dir;
+  return s->point;
+#endif
+}
+
+/* Next-event estimation at surface point `surface` of sphere `index` (-1: a triangle), material m,
+ * for a path arriving along d: one shadow ray to a light sample; returns the MIS-weighted
+ * radiance it brings (throughput not yet applied) and counts the shadow ray in *segments. */
+CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params,
+                            int index, __global const GpuMaterial* m, const SurfacePoint* surface, uint* segments) {
   /* With no light, light_sample reads the buffer's placeholder entry and returns pdf 0 (no early
    * return: a branch here would stop PoCL's vectoriser). */
-  __global const GpuSphere* sphere = &spheres[index];
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample,
                                        CLPT_DIM_LIGHT + path->bounce);
-  const LightSample ls = light_sample(lights, params->light_count, spheres, hit_point, u);
+  const LightSample ls = light_sample(scene->lights, params->light_count, scene->spheres, surface->point, u);
   real bsdf_pdf;
-  const Vec3 f_cos = material_eval(sphere, path->direction, normal, ls.direction, &bsdf_pdf);
-  const int skip = v3_dot(ls.direction, normal) > (real)0 ? index : -1;
-  const Hit shadow = scene_intersect(spheres, params->sphere_count, hit_point, ls.direction,
+  const Vec3 f_cos = material_eval(m, path->direction, surface->normal, ls.direction, &bsdf_pdf);
+  const int skip = index >= 0 && v3_dot(ls.direction, surface->normal) > (real)0 ? index : -1;
+  const Vec3 origin = leaving_origin(surface, ls.direction);
+  const real near_light = ls.distance * (real)0.999f;
+  const Hit shadow = scene_intersect(scene->spheres, params->sphere_count, origin, ls.direction,
                                      params->ray_epsilon, skip);
+  const bool hierarchy_blocks = scene_hierarchy_occluded(scene, params, origin, ls.direction, near_light, skip);
   *segments += 1u;
   /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
-   * is the emitter, at the sampled point's distance (nothing in between). */
-  const bool visible = ls.pdf > (real)0 && shadow.sphere == ls.sphere &&
-                       shadow.t >= ls.distance * (real)0.999f && !v3_is_zero(f_cos);
+   * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
+   * find the emitter first (when the lights are in the loop), the hierarchy nothing before it. */
+  const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
+  const bool visible = ls.pdf > (real)0 && loop_clear && !hierarchy_blocks && !v3_is_zero(f_cos) &&
+                       leaves_consistently(surface, ls.direction);
   const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
-  return v3_scale(v3_mul(f_cos, v3_load_global(spheres[ls.sphere].emission)), weight);
+  return v3_scale(v3_mul(f_cos, v3_load_global(scene->spheres[ls.sphere].material.emission)), weight);
 }
 
 /* Field-wise choice between two path states (a select of the whole struct would stop PoCL's
@@ -178,44 +251,51 @@ CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
  * (MIS-weighted under nee) and ends it (emitters do not reflect); past max_bounces the path ends;
  * otherwise, under nee, a shadow ray adds the light it finds, and the material scatters the path.
  * Written as selects over the cases, not branches, so that PoCL vectorises it. */
-CLPT_INLINE void path_shade(PathState* path, Hit hit, __global const GpuSphere* spheres,
-                            __global const GpuLight* lights, const GpuRenderParams* params) {
+CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
   path->segments += 1u;
-  const bool missed = hit.sphere < 0;
-  const int index = missed ? 0 : hit.sphere;
-  __global const GpuSphere* sphere = &spheres[index];
-  const bool emitter = !missed && sphere->material == CLPT_MATERIAL_EMITTER;
+  const bool missed = hit.sphere < 0 && hit.triangle < 0;
+  const int index = hit.sphere < 0 ? 0 : hit.sphere;
+#if CLPT_HAS_TRIANGLES
+  const bool on_triangle = hit.triangle >= 0;
+  __global const GpuMaterial* material =
+      on_triangle ? &scene->triangle_shading[hit.triangle].material : &scene->spheres[index].material;
+#else
+  __global const GpuMaterial* material = &scene->spheres[index].material;
+#endif
+  const bool emitter = !missed && material->kind == CLPT_MATERIAL_EMITTER;
   bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
 
   const real t = missed ? (real)0 : hit.t;
-  const Vec3 hit_point = v3_add_scaled(path->origin, path->direction, t);
-  const Vec3 normal = sphere_normal_at(sphere, path->origin, path->direction, t);
+  const SurfacePoint surface = surface_point_of(scene, hit, path->origin, path->direction, t);
+  const Vec3 normal = surface.normal;
+  /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */
+  const int sphere_index = surface.on_triangle ? -1 : index;
 
-  Vec3 emitted = v3_mul(path->throughput, v3_load_global(sphere->emission));
+  Vec3 emitted = v3_mul(path->throughput, v3_load_global(material->emission));
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
-    /* A BSDF-sampled ray that found a light competes with the light sample taken before it. */
+    /* A BSDF-sampled ray that found a light competes with the light sample taken before it
+     * (triangles are no sampled lights: density 0, the hit keeps its full weight). */
     const real light_pdf = path->bsdf_pdf > (real)0
-        ? light_pdf_of_hit(lights, params->light_count, index, normal, path->direction, t) : (real)0;
+        ? light_pdf_of_hit(scene->lights, params->light_count, sphere_index, normal, path->direction, t) : (real)0;
     emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? mis_power(path->bsdf_pdf, light_pdf) : (real)1);
   }
-#else
-  (void)lights;
 #endif
   path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
 
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample, 1u + path->bounce);
   Vec3 weight;
-  const Vec3 next = material_sample(sphere, path->direction, normal, u, &weight);
+  const Vec3 next = material_sample(material, path->direction, normal, u, &weight);
+  weight = v3_select(leaves_consistently(&surface, next), weight, v3_splat((real)0));
 
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
     uint shadow_segments = 0u;
-    const Vec3 light = next_event(path, spheres, lights, params, index, hit_point, normal, &shadow_segments);
+    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments);
     path->radiance = v3_select(scatters, v3_add(path->radiance, v3_mul(path->throughput, light)), path->radiance);
     path->segments += scatters ? shadow_segments : 0u;
     real next_pdf;
-    (void)material_eval(sphere, path->direction, normal, next, &next_pdf);
+    (void)material_eval(material, path->direction, normal, next, &next_pdf);
     path->bsdf_pdf = next_pdf;
   }
 #endif
@@ -232,9 +312,9 @@ CLPT_INLINE void path_shade(PathState* path, Hit hit, __global const GpuSphere* 
 #endif
 
   path->throughput = v3_select(scatters, throughput, path->throughput);
-  path->origin = v3_select(scatters, hit_point, path->origin);
+  path->origin = v3_select(scatters, leaving_origin(&surface, next), path->origin);
   path->direction = v3_select(scatters, next, path->direction);
-  path->skip_sphere = scatters && v3_dot(next, normal) > (real)0 ? index : -1;
+  path->skip_sphere = scatters && sphere_index >= 0 && v3_dot(next, normal) > (real)0 ? sphere_index : -1;
   path->bounce += scatters ? 1u : 0u;
   path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
 }

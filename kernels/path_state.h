@@ -64,7 +64,8 @@
  * the same bounce. Not part of a path (the megakernel keeps its Hit in registers). */
 #define CLPT_PATH_SCRATCH_FIELDS(B)                                                            \
   B(real, hit_t, CLPT_REAL_BYTES, "distance to the closest hit, CLPT_NO_HIT for a miss") \
-  B(int, hit_sphere, 4, "sphere hit, -1 for a miss")
+  B(int, hit_sphere, 4, "sphere hit, -1 for a miss or a triangle hit")                  \
+  B(int, hit_triangle, 4, "triangle hit, -1 for a miss or a sphere hit")
 
 #ifdef __OPENCL_C_VERSION__
 /* The struct's members. */

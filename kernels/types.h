@@ -17,11 +17,21 @@ typedef uint clpt_u32;
 typedef uint32_t clpt_u32;
 #endif
 
-/* Material kinds (GpuSphere.material). */
+/* Material kinds (GpuMaterial.kind). */
 #define CLPT_MATERIAL_LAMBERTIAN 0u
 #define CLPT_MATERIAL_PHONG 1u
 #define CLPT_MATERIAL_GLASS 2u
 #define CLPT_MATERIAL_EMITTER 3u
+#define CLPT_MATERIAL_MIRROR 4u /* perfect specular reflector, reflectance rho */
+
+/* One material, as a sphere embeds it and a triangle's shading record does: 36 bytes. */
+typedef struct GpuMaterial {
+  clpt_u32 kind;           /* CLPT_MATERIAL_* */
+  float reflectance[3];    /* albedo rho per channel, [0, 1] */
+  float phong_exponent;    /* Phong lobe exponent n (Phong only) */
+  float emission[3];       /* emitted radiance per channel (emitters only) */
+  float ior;               /* index of refraction inside (glass only); outside is 1 */
+} GpuMaterial;
 
 /* Sample indices of the second half-film start at 2^CLPT_SAMPLE_STREAM_BIT (render/film.h,
  * render/pass_schedule.h): its samples are fresh for jitter and grid, and an independent Sobol
@@ -45,16 +55,49 @@ typedef struct GpuSphere {
   float surface_point[3];  /* s0, camera-relative, world units */
   float radius;            /* world units, > 0 */
   float surface_normal[3]; /* n0, unit, outward at s0 */
-  clpt_u32 material;       /* CLPT_MATERIAL_* */
-  float reflectance[3];    /* albedo rho per channel, [0, 1] */
-  float phong_exponent;    /* Phong lobe exponent n (Phong only) */
-  float emission[3];       /* emitted radiance per channel (emitters only) */
-  float ior;               /* index of refraction inside (glass only); outside is 1 */
+  GpuMaterial material;
   float surface_point_lo[3];  /* remainders of surface_point, radius, surface_normal */
   float radius_lo;
   float surface_normal_lo[3];
   float pad;
 } GpuSphere;
+
+/* One node of the bounding volume hierarchy over triangles (and spheres, when a scene has more
+ * than a few): 32 bytes. Nodes are stored depth first: an interior node's first child is the next
+ * node, its second child is node `first`. A leaf holds `count & CLPT_BVH_COUNT_MASK` primitives
+ * from index `first` of the triangle buffer, or of the sphere buffer when CLPT_BVH_SPHERE_LEAF is
+ * set in `count` (a leaf holds one kind only). Bounds are camera-relative, rounded outwards. */
+#define CLPT_BVH_SPHERE_LEAF 0x80000000u
+#define CLPT_BVH_COUNT_MASK 0x7fffffffu
+/* Traversal stack entries (intersect.cl): the host refuses a hierarchy deeper than this. */
+#define CLPT_BVH_STACK 48
+typedef struct GpuBvhNode {
+  float lower[3];   /* box minimum corner, camera-relative world units */
+  clpt_u32 first;   /* interior: index of the second child; leaf: first primitive */
+  float upper[3];   /* box maximum corner */
+  clpt_u32 count;   /* interior: 0; leaf: primitive count, | CLPT_BVH_SPHERE_LEAF for spheres */
+} GpuBvhNode;
+
+/* A triangle's vertices for intersection, camera-relative: 48 bytes (16-byte rows). Triangles are
+ * stored in the hierarchy's leaf order. */
+typedef struct GpuTriangle {
+  float v0[3];
+  float pad0;
+  float v1[3];
+  float pad1;
+  float v2[3];
+  float pad2;
+} GpuTriangle;
+
+/* What shading needs of triangle i (same index as GpuTriangle): 80 bytes, read only at hits. */
+typedef struct GpuTriangleShading {
+  float normal0[3];       /* unit shading normal at v0 (has_normals only) */
+  float normal1[3];       /* at v1 */
+  float normal2[3];       /* at v2 */
+  clpt_u32 has_normals;   /* 1: interpolate the normals above; 0: the geometric normal shades */
+  GpuMaterial material;
+  float pad;
+} GpuTriangleShading;
 
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
 #define CLPT_ESTIMATOR_BOOK 0u /* the book's: light only where a path hits an emitter */
@@ -105,7 +148,7 @@ typedef struct GpuRenderParams {
   clpt_u32 estimator;        /* CLPT_ESTIMATOR_* (read only by the generic kernel) */
   clpt_u32 rr_from;          /* Russian roulette at scattering events from this bounce on, or CLPT_RR_NEVER */
   clpt_u32 light_count;      /* entries in the light buffer (next-event estimation) */
-  clpt_u32 pad;
+  clpt_u32 bvh_node_count;   /* entries in the node buffer; 0: no hierarchy (spheres in a loop) */
 } GpuRenderParams;
 
 /* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
@@ -121,14 +164,27 @@ typedef struct GpuPixelPass {
 
 /* X-macro over every field, for the layout test on both sides. */
 #define CLPT_LAYOUT_FIELDS(X)                                                                     \
+  X(GpuMaterial, kind)                                                                            \
+  X(GpuMaterial, reflectance)                                                                     \
+  X(GpuMaterial, phong_exponent)                                                                  \
+  X(GpuMaterial, emission)                                                                        \
+  X(GpuMaterial, ior)                                                                             \
+  X(GpuBvhNode, lower)                                                                            \
+  X(GpuBvhNode, first)                                                                            \
+  X(GpuBvhNode, upper)                                                                            \
+  X(GpuBvhNode, count)                                                                            \
+  X(GpuTriangle, v0)                                                                              \
+  X(GpuTriangle, v1)                                                                              \
+  X(GpuTriangle, v2)                                                                              \
+  X(GpuTriangleShading, normal0)                                                                  \
+  X(GpuTriangleShading, normal1)                                                                  \
+  X(GpuTriangleShading, normal2)                                                                  \
+  X(GpuTriangleShading, has_normals)                                                              \
+  X(GpuTriangleShading, material)                                                                 \
   X(GpuSphere, surface_point)                                                                     \
   X(GpuSphere, radius)                                                                            \
   X(GpuSphere, surface_normal)                                                                    \
   X(GpuSphere, material)                                                                          \
-  X(GpuSphere, reflectance)                                                                       \
-  X(GpuSphere, phong_exponent)                                                                    \
-  X(GpuSphere, emission)                                                                          \
-  X(GpuSphere, ior)                                                                               \
   X(GpuSphere, surface_point_lo)                                                                  \
   X(GpuSphere, radius_lo)                                                                         \
   X(GpuSphere, surface_normal_lo)                                                                 \
@@ -151,6 +207,7 @@ typedef struct GpuPixelPass {
   X(GpuRenderParams, estimator)                                                                   \
   X(GpuRenderParams, rr_from)                                                                     \
   X(GpuRenderParams, light_count)                                                                 \
+  X(GpuRenderParams, bvh_node_count)                                                              \
   X(GpuLight, cap_axis)                                                                           \
   X(GpuLight, sphere)                                                                             \
   X(GpuLight, one_minus_cos_cap)                                                                  \
@@ -160,7 +217,7 @@ typedef struct GpuPixelPass {
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the
  * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
@@ -175,6 +232,10 @@ typedef struct GpuPixelPass {
   static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>,    \
                 #T " is copied to the device byte for byte");
 #endif
+CLPT_CHECK_SIZE(GpuMaterial, 36)
+CLPT_CHECK_SIZE(GpuBvhNode, 32)
+CLPT_CHECK_SIZE(GpuTriangle, 48)
+CLPT_CHECK_SIZE(GpuTriangleShading, 80)
 CLPT_CHECK_SIZE(GpuSphere, 96)
 CLPT_CHECK_SIZE(GpuLight, 32)
 CLPT_CHECK_SIZE(GpuCamera, 48)

@@ -4,7 +4,7 @@
  * always occupy slots [0, active_count) densely, so each kernel runs over exactly the paths that
  * need it and work-item i touches slot i:
  *   wf_generate   slots [active, active + fresh) <- new camera paths for the pass's next jobs
- *   wf_intersect  active paths -> hit_t, hit_sphere
+ *   wf_intersect  active paths -> hit_t, hit_sphere, hit_triangle
  *   wf_shade      active paths -> emission, next ray or end; an ended path leaves its radiance in
  *                 its job's result slot, a surviving one is stored densely into the other state
  *                 set (atomic appends): shading and compaction in one pass
@@ -55,14 +55,19 @@ __kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint slo
   path_store(slot_begin + i, job_index, &p CLPT_STATE_ARGS);
 }
 
-__kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderParams params, uint count
-                               CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
+/* Takes every scene buffer, as wf_shade does (the host binds them alike); reads only geometry. */
+__kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                           __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                           __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
+                           uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const PathState p = path_load(i, &params CLPT_STATE_ARGS);
-  const Hit hit = path_intersect(&p, spheres, &params);
+  const Hit hit = path_intersect(&p, &scene, &params);
   hit_t[i] = hit.t;
   hit_sphere[i] = hit.sphere;
+  hit_triangle[i] = hit.triangle;
 }
 
 /* Shading and compaction in one pass: every active path is shaded; an ended path writes its
@@ -82,7 +87,8 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, const GpuRenderPar
 #define CLPT_WAVEFRONT_GROUP 1024
 #endif
 __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
-                       const GpuRenderParams params, uint count, __global float* results,
+                       __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                       __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params, uint count, __global float* results,
                        __global volatile uint* survivors CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
   __local uint rank_of[CLPT_WAVEFRONT_GROUP]; /* survives (0/1), then the survivor's rank */
   __local uint group_base;
@@ -94,7 +100,9 @@ __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLigh
   Hit hit;
   hit.t = hit_t[slot];
   hit.sphere = active ? hit_sphere[slot] : -1;
-  path_shade(&p, hit, spheres, lights, &params);
+  hit.triangle = active ? hit_triangle[slot] : -1;
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
+  path_shade(&p, hit, &scene, &params);
   const uint job_index = job[slot];
   if (active && !p.alive) job_result_store(results, job_index, job_count(&params), p.radiance, p.segments);
   const bool survives = active && p.alive;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "device_test_util.h"
+#include "mesh_test_util.h"
 #include "render_test_util.h"
 
 namespace clpt::test {
@@ -22,7 +23,29 @@ struct Variant {
   std::string estimator = "";  // "": the scene's
   SceneLoops scene_loops = SceneLoops::Auto;
   Sampler sampler = Sampler::Jitter;
+  bool meshes = false;  // the mesh scene (with_meshes) instead of the book scene
 };
+
+// The book scene with triangles and a hierarchy: its left ball replaced by a tessellated sphere
+// with shading normals, a mirror box of triangles beside the right ball, and 40 small balls on
+// the floor (more than kMaxLoopSpheres: the spheres become hierarchy primitives too).
+void with_meshes(Scene& scene) {
+  for (size_t i = 0; i < scene.spheres.size(); ++i)
+    if (scene.spheres[i].name == "left_ball") {
+      scene.meshes.push_back(tessellated_sphere(scene.spheres[i].center, 1.0, 24, 32, scene.spheres[i].material, true));
+      scene.spheres.erase(scene.spheres.begin() + long(i));
+      break;
+    }
+  scene.meshes.push_back(closed_box({3.2, 0.0, -1.0}, {4.2, 1.5, 0.0}, mirror(0.9)));
+  for (int k = 0; k < 40; ++k) {
+    Sphere s;
+    s.name = "pebble" + std::to_string(k);
+    s.radius = 0.1;
+    s.center = {-2.5 + 0.25 * (k % 20), 0.1, 1.5 + 0.3 * (k / 20)};
+    s.material = lambertian(0.3 + 0.01 * k);
+    scene.spheres.push_back(s);
+  }
+}
 
 std::vector<float> render_variant(const std::string& scene_name, const Variant& v) {
   return render_book_variant(scene_name, 77, [&](RenderRequest& request) {
@@ -34,6 +57,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     request.scene_loops = v.scene_loops;
     if (!v.estimator.empty()) request.scene.settings.estimator = v.estimator;
     request.scene.settings.sampler = v.sampler;
+    if (v.meshes) with_meshes(request.scene);
   });
 }
 
@@ -106,6 +130,26 @@ TEST_P(FormsAgree, LockstepGroupThatDoesNotDivideTheLaunch) {
   expect_same_image(
       render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 100, MegakernelLoop::Lockstep}),
       render_variant(GetParam(), {ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::Lockstep}));
+}
+
+// Triangles, shading normals, a mirror, spheres in the hierarchy: both forms traverse it alike,
+// and the generic kernel (which reads counts at run time) agrees with the specialised one.
+TEST(FormsAgreeOnMeshes, MegakernelEqualsWavefront) {
+  for (const char* estimator : {"book", "nee"}) {
+    Variant mega, wave;
+    mega.meshes = wave.meshes = true;
+    mega.estimator = wave.estimator = estimator;
+    wave.form = ExecutionForm::Wavefront;
+    expect_same_image(render_variant("diffuse", mega), render_variant("diffuse", wave));
+  }
+}
+
+TEST(FormsAgreeOnMeshes, SpecialisedKernelEqualsGeneric) {
+  Variant specialised, generic;
+  specialised.meshes = generic.meshes = true;
+  specialised.estimator = generic.estimator = "nee";
+  generic.generic = true;
+  expect_same_image(render_variant("diffuse", specialised), render_variant("diffuse", generic));
 }
 
 INSTANTIATE_TEST_SUITE_P(BookScenes, FormsAgree, ::testing::Values("diffuse", "specular", "glass"));

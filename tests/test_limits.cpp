@@ -112,11 +112,27 @@ TEST(Limits, MemoryEstimateFollowsTheRenderers) {
   const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
   EXPECT_EQ(mk.total_bytes, 10u * 96 + 1000u * 32 + 1000u * 4096 * 16);
   EXPECT_EQ(estimate_device_memory(ExecutionForm::Megakernel, 1ull << 26, 1, 0, d).largest_bytes, 256u << 20);
-  // Wavefront: 65536 paths x 252 B (the double preset's state, the largest), pass statistics,
+  // Wavefront: 65536 paths x 256 B (the double preset's state, the largest), pass statistics,
   // job results bounded by the budget.
   const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1ull << 20, 1, 65536, d);
-  EXPECT_EQ(wf.total_bytes, 96u + 65536u * 252 + (32u << 20) + (256u << 20));
+  EXPECT_EQ(wf.total_bytes, 96u + 65536u * 256 + (32u << 20) + (256u << 20));
   EXPECT_EQ(wf.largest_label, "job results");
+}
+
+// Triangles add 48 + 80 B each and two 32-byte nodes per primitive (spheres included); a device
+// whose largest allocation cannot hold the shading records refuses before upload, naming them.
+TEST(Limits, TrianglesCountInTheMemoryEstimate) {
+  const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
+  const MemoryEstimate plain = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
+  const MemoryEstimate mesh = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000);
+  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 80) + 2u * 100010 * 32);
+  EXPECT_EQ(kDeviceBytesPerTriangle, 192u);
+  const DeviceInfo small = fake_device(8ull << 30, 64ull << 20);
+  const MemoryEstimate big = estimate_device_memory(ExecutionForm::Megakernel, 100, 1, 0, small, 1000000);
+  EXPECT_EQ(big.largest_label, "triangle shading");
+  const auto [code, message] = error_of([&] { check_device_memory(big, small); });
+  EXPECT_EQ(code, ExitCode::DeviceError);
+  EXPECT_NE(message.find("buffer 'triangle shading' would be 76.3 MiB"), std::string::npos) << message;
 }
 
 TEST(Limits, MemoryErrorsNameTheDeviceAndSizes) {

@@ -195,6 +195,23 @@ reflectance = [0.5, 0.5, 0.5]
 exponent = 20
 )";
 
+// The mirror takes a reflectance and nothing else; the writer writes it back.
+TEST(SceneString, MirrorMaterialTakesOnlyAReflectance) {
+  const std::string mirror_scene = std::string(kMinimalScene) +
+      "\n[[sphere]]\ncenter = [1, 1, 0]\nradius = 0.5\nmaterial = { type = \"mirror\", reflectance = [0.9, 0.8, 0.7] }\n";
+  const Scene scene = load_scene_string(mirror_scene, "mem.toml");
+  ASSERT_EQ(scene.spheres.size(), 3u);
+  EXPECT_EQ(scene.spheres[2].material.type, MaterialType::Mirror);
+  EXPECT_EQ(scene.spheres[2].material.reflectance, (Vec3{0.9, 0.8, 0.7}));
+  const std::string with_ior = std::string(kMinimalScene) +
+      "\n[[sphere]]\ncenter = [1, 1, 0]\nradius = 0.5\nmaterial = { type = \"mirror\", reflectance = [0.9, 0.8, 0.7], ior = 1.5 }\n";
+  EXPECT_NE(string_error(with_ior).find("'ior' does not apply to material type 'mirror'"), std::string::npos)
+      << string_error(with_ior);
+  const std::string too_bright = std::string(kMinimalScene) +
+      "\n[[sphere]]\ncenter = [1, 1, 0]\nradius = 0.5\nmaterial = { type = \"mirror\", reflectance = [1.5, 0.8, 0.7] }\n";
+  EXPECT_NE(string_error(too_bright).find("reflectance"), std::string::npos) << string_error(too_bright);
+}
+
 TEST(SceneString, MinimalSceneTakesTheDefaults) {
   const Scene scene = load_scene_string(kMinimalScene, "mem.toml");
   EXPECT_EQ(scene.file, "mem.toml");

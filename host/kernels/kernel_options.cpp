@@ -1,5 +1,6 @@
 #include "kernels/kernel_options.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "scene/device_scene.h"
@@ -103,6 +104,26 @@ bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device) {
   return loops == SceneLoops::Unrolled;
 }
 
+bool spheres_in_hierarchy(const Scene& scene) {
+  return static_cast<int>(scene.spheres.size()) > kMaxLoopSpheres;
+}
+
+std::vector<bool> loop_spheres(const Scene& scene) {
+  const size_t n = scene.spheres.size();
+  if (!spheres_in_hierarchy(scene)) return std::vector<bool>(n, true);
+  std::vector<double> radii;
+  for (const Sphere& s : scene.spheres) radii.push_back(s.radius);
+  std::nth_element(radii.begin(), radii.begin() + long(n / 2), radii.end());
+  const double large = 10 * radii[n / 2];
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return scene.spheres[a].radius > scene.spheres[b].radius; });
+  std::vector<bool> in_loop(n, false);
+  for (size_t k = 0; k < std::min<size_t>(n, 8) && scene.spheres[order[k]].radius >= large; ++k) in_loop[order[k]] = true;
+  return in_loop;
+}
+
 KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
   f.precision = precision;
@@ -112,10 +133,20 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.light_count = static_cast<int>(light_caps(scene).size());
   f.phong = false;
   f.glass = false;
-  f.sphere_count = static_cast<int>(scene.spheres.size());
-  for (const Sphere& s : scene.spheres) {
-    f.phong |= s.material.type == MaterialType::Phong;
-    f.glass |= s.material.type == MaterialType::Glass;
+  f.mirror = false;
+  f.spheres_in_bvh = spheres_in_hierarchy(scene);
+  const std::vector<bool> in_loop = loop_spheres(scene);
+  f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
+  f.triangles = false;
+  const auto uses = [&f](const Material& m) {
+    f.phong |= m.type == MaterialType::Phong;
+    f.glass |= m.type == MaterialType::Glass;
+    f.mirror |= m.type == MaterialType::Mirror;
+  };
+  for (const Sphere& s : scene.spheres) uses(s.material);
+  for (const TriangleMesh& m : scene.meshes) {
+    uses(m.material);
+    f.triangles |= !m.triangles.empty();
   }
   return f;
 }
@@ -141,13 +172,18 @@ std::string kernel_build_options(const KernelFeatures& features) {
   o << " -DCLPT_INTERSECT=" << static_cast<int>(features.intersection.value_or(default_intersection(features.precision)));
   o << " -DCLPT_HAS_PHONG=" << (features.phong ? 1 : 0);
   o << " -DCLPT_HAS_GLASS=" << (features.glass ? 1 : 0);
+  o << " -DCLPT_HAS_MIRROR=" << (features.mirror ? 1 : 0);
+  o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
+  o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
   o << " -DCLPT_HAS_RR=" << (features.generic || features.russian_roulette ? 1 : 0);
   if (!features.generic) o << " -DCLPT_ESTIMATOR=" << static_cast<int>(features.estimator);
-  if (features.sphere_count > 0) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
+  // A specialised kernel fixes its sphere loop, at 0 when the spheres are in the hierarchy or
+  // there are none (then no sphere loop is compiled at all).
+  if (!features.generic) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
   if (!features.generic && features.light_count >= 0) o << " -DCLPT_LIGHT_COUNT=" << features.light_count;
   if (features.lockstep_group > 0) o << " -DCLPT_LOCKSTEP_GROUP=" << features.lockstep_group;
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
-  const bool specialised_loops = features.sphere_count > 0 || (!features.generic && features.light_count >= 0);
+  const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
@@ -180,9 +216,31 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   o << "  glass shading: " << (features.glass ? "compiled (the scene has a glass material)"
                                               : "left out (no glass material in the scene)")
     << "\n";
+  o << "  mirror shading: " << (features.mirror ? "compiled (the scene has a mirror material)"
+                                                : "left out (no mirror material in the scene)")
+    << "\n";
   o << "  sphere loop: "
-    << (features.sphere_count > 0 ? "fixed at the scene's " + std::to_string(features.sphere_count) + " spheres"
-                                  : std::string("run-time sphere count (generic kernel)"))
+    << (features.generic ? std::string("run-time sphere count (generic kernel)")
+        : features.spheres_in_bvh
+            ? "fixed at the scene's " + std::to_string(features.sphere_count) +
+                  " large spheres; the others are hierarchy primitives (more than " +
+                  std::to_string(kMaxLoopSpheres) + " spheres, the measured crossover)"
+        : "fixed at the scene's " + std::to_string(features.sphere_count) + " spheres (at most " +
+              std::to_string(kMaxLoopSpheres) + ": a loop beats traversal)")
+    << "\n";
+  o << "  triangles: "
+    << (features.generic ? "compiled (generic kernel)"
+        : features.triangles ? "compiled (the scene has meshes)" : "left out (no mesh in the scene)")
+    << "\n";
+  o << "  hierarchy traversal: "
+    << (features.generic ? "compiled (generic kernel; used when the scene has a hierarchy)"
+        : features.has_hierarchy()
+            ? std::string("compiled (") +
+                  (features.triangles && features.spheres_in_bvh ? "triangles and spheres"
+                   : features.triangles                          ? "triangles"
+                                                                 : "spheres") +
+                  " in the hierarchy; closest hit and any-hit shadow rays)"
+            : std::string("left out (no triangles, and few enough spheres for the loop)"))
     << "\n";
   if (!features.generic && features.estimator == Estimator::Nee)
     o << "  light loop: "
@@ -190,7 +248,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                                           " sampled light(s)"
                                     : std::string("run-time light count"))
       << "\n";
-  if (features.sphere_count > 0)
+  if (!features.generic)
     o << "  scene loops: " << (features.unroll_scene_loops ? "unrolled" : "rolled") << " (--scene-loops "
       << scene_loops_name(features.scene_loops)
       << (features.scene_loops == SceneLoops::Auto ? ": unrolled on CPUs, rolled on GPUs" : "") << ")\n";

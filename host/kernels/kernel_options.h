@@ -66,6 +66,18 @@ std::optional<SceneLoops> parse_scene_loops(const std::string& name);
 // Whether a kernel for this device unrolls its scene loops.
 bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device);
 
+// Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
+// of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
+// The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
+constexpr int kMaxLoopSpheres = 16;
+// Whether the scene's spheres are hierarchy primitives (more than kMaxLoopSpheres of them).
+bool spheres_in_hierarchy(const Scene& scene);
+// Which spheres the kernels' loop tests (the others are hierarchy primitives): all of them when
+// there are at most kMaxLoopSpheres; else those of radius at least 10x the median, at most 8 of
+// them (the book's walls, light and balls among pebbles): a wall's box would cover every other
+// box, so each ray would visit the wall's leaf on any path through the tree.
+std::vector<bool> loop_spheres(const Scene& scene);
+
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)
   std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
@@ -75,6 +87,11 @@ struct KernelFeatures {
   bool russian_roulette = true;   // CLPT_HAS_RR
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
+  bool mirror = true;    // CLPT_HAS_MIRROR
+  bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
+  bool spheres_in_bvh = false;  // the spheres are hierarchy primitives (no sphere loop)
+  // CLPT_HAS_BVH: traversal compiled (triangles, spheres_in_bvh or generic); see has_hierarchy().
+  bool has_hierarchy() const { return generic || triangles || spheres_in_bvh; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
   int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop fixed likewise); -1: run time
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:

@@ -77,13 +77,31 @@ void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {
     throw Error(ExitCode::BadScene, scene.file + ": sphere: the scene has " +
                                         std::to_string(scene.spheres.size()) + " spheres; at most " +
                                         std::to_string(kMaxSpheres) + " are supported");
+  const uint64_t triangles = triangle_count(scene);
+  if (triangles > kMaxTriangles)
+    throw Error(ExitCode::BadScene, scene.file + ": mesh: the scene's meshes have " + std::to_string(triangles) +
+                                        " triangles; at most " + std::to_string(kMaxTriangles) +
+                                        " (2^27) are supported");
+}
+
+uint64_t triangle_count(const Scene& scene) {
+  uint64_t n = 0;
+  for (const TriangleMesh& m : scene.meshes) n += m.triangles.size();
+  return n;
 }
 
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
-                                      uint32_t paths_in_flight, const DeviceInfo& device) {
+                                      uint32_t paths_in_flight, const DeviceInfo& device, uint64_t triangles) {
   MemoryEstimate e;
   const uint64_t budget = launch_buffer_budget(device);
   add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
+  if (triangles > 0) {
+    static_assert(sizeof(GpuTriangle) + sizeof(GpuTriangleShading) + 2 * sizeof(GpuBvhNode) == kDeviceBytesPerTriangle,
+                  "kDeviceBytesPerTriangle states the layouts of kernels/types.h");
+    add_buffer(e, triangles * sizeof(GpuTriangle), "triangles");
+    add_buffer(e, triangles * sizeof(GpuTriangleShading), "triangle shading");
+    add_buffer(e, 2 * (triangles + spheres) * sizeof(GpuBvhNode), "hierarchy nodes");
+  }
   // Both forms keep 16 B per sample of a launch (job results) and 32 B per pixel of a launch (pass
   // statistics). Wavefront launches cover the whole image; megakernel launches at most budget / 32
   // pixels (pass_loop.cpp).

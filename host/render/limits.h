@@ -19,6 +19,12 @@ constexpr int kMaxImageSide = 16384;               // pixels, per axis
 constexpr uint64_t kMaxImagePixels = 1ull << 26;   // width * height
 constexpr uint64_t kMaxSpp = 1ull << 31;           // sample indices are 32-bit on the device
 constexpr size_t kMaxSpheres = 4096;
+// Triangles over all meshes: their indices are 31-bit in the hierarchy's leaves and signed 32-bit
+// in a hit; 2^27 keeps every index (and the 2n - 1 nodes) far from either.
+constexpr uint64_t kMaxTriangles = 1ull << 27;
+// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (80) + at most two hierarchy
+// nodes (2 x 32; a hierarchy over n primitives has at most 2n - 1 nodes).
+constexpr uint64_t kDeviceBytesPerTriangle = 48 + 80 + 2 * 32;
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
 // kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose
@@ -62,8 +68,14 @@ struct MemoryEstimate {
 // buffers of kernels/path_state.h twice and its scratch once, at the double preset's sizes, the
 // largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
+// `triangles` adds the triangle, triangle shading and hierarchy node buffers (the nodes counted at
+// their bound of two per primitive, spheres included).
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
-                                      uint32_t paths_in_flight, const DeviceInfo& device);
+                                      uint32_t paths_in_flight, const DeviceInfo& device,
+                                      uint64_t triangles = 0);
+
+// Triangles over all of the scene's meshes.
+uint64_t triangle_count(const Scene& scene);
 
 // Throws Error(DeviceError) naming the device and the sizes when `need` exceeds the device's
 // global memory or its largest allocation.

@@ -20,7 +20,7 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
   kernel_ = Kernel(program_.get(), "render_paths", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
-  upload_scene(ctx, scene, spheres_, lights_);
+  scene_ = upload_scene(ctx, scene);
 }
 
 uint32_t MegakernelRenderer::max_samples_per_pass(uint32_t pixel_count) const {
@@ -33,10 +33,9 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
     results_ = Buffer(ctx_, jobs * sizeof(cl_float4), CL_MEM_READ_WRITE, "job results");
   const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
-  kernel_.set_arg(0, spheres_);
-  kernel_.set_arg(1, lights_);
-  kernel_.set_arg(2, params);
-  kernel_.set_arg(3, results_);
+  const cl_uint next = bind_scene(kernel_, 0, scene_);
+  kernel_.set_arg(next, params);
+  kernel_.set_arg(next + 1, results_);
   film_.set_arg(0, params);
   film_.set_arg(1, results_);
   film_.set_arg(2, pass_);

@@ -37,7 +37,7 @@ class MegakernelRenderer : public Renderer {
   DeviceContext& ctx_;
   ProgramHandle program_;
   Kernel kernel_, film_;
-  Buffer spheres_, lights_;
+  SceneBufferSet scene_;
   Buffer results_, pass_;
   size_t local_size_ = 0;
   uint32_t lockstep_group_ = 0;  // the lockstep loop's work-group size, 0: per-path loop

@@ -55,7 +55,7 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.camera = ds.camera;
   p.width = static_cast<clpt_u32>(s.width);
   p.height = static_cast<clpt_u32>(s.height);
-  p.sphere_count = static_cast<clpt_u32>(ds.spheres.size());
+  p.sphere_count = ds.loop_spheres;
   p.max_bounces = static_cast<clpt_u32>(s.max_bounces);
   p.seed_lo = static_cast<clpt_u32>(s.seed & 0xffffffffu);
   p.seed_hi = static_cast<clpt_u32>(s.seed >> 32);
@@ -70,6 +70,7 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
                                                                                         : CLPT_ESTIMATOR_BOOK;
   p.rr_from = s.rr_from >= 0 ? static_cast<clpt_u32>(s.rr_from) : CLPT_RR_NEVER;
   p.light_count = static_cast<clpt_u32>(ds.lights.size());
+  p.bvh_node_count = static_cast<clpt_u32>(ds.bvh.nodes.size());
   return p;
 }
 
@@ -114,7 +115,8 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
           request.paths_in_flight ? request.paths_in_flight : WavefrontRenderer::default_paths_in_flight(d.device);
     }
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
-    d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device);
+    d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
+                                      triangle_count(scene));
     plan.devices.push_back(std::move(d));
   }
   return plan;

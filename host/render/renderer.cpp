@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "kernels/kernel_source.h"
@@ -20,14 +21,33 @@ ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
   return program;
 }
 
-void Renderer::upload_scene(DeviceContext& ctx, const DeviceScene& scene, Buffer& spheres, Buffer& lights) {
-  const size_t sphere_bytes = scene.spheres.size() * sizeof(GpuSphere);
-  spheres = Buffer(ctx, sphere_bytes, CL_MEM_READ_ONLY, "spheres");
-  ctx.write(spheres, scene.spheres.data(), sphere_bytes);
-  std::vector<GpuLight> entries = scene.lights;
-  if (entries.empty()) entries.push_back(GpuLight{});
-  lights = Buffer(ctx, entries.size() * sizeof(GpuLight), CL_MEM_READ_ONLY, "lights");
-  ctx.write(lights, entries.data(), entries.size() * sizeof(GpuLight));
+namespace {
+// A read-only buffer holding `entries`, or one zeroed entry when there are none.
+template <typename T>
+Buffer upload_entries(DeviceContext& ctx, const std::vector<T>& entries, const char* label) {
+  const T placeholder{};
+  const T* data = entries.empty() ? &placeholder : entries.data();
+  const size_t bytes = std::max<size_t>(entries.size(), 1) * sizeof(T);
+  Buffer buffer(ctx, bytes, CL_MEM_READ_ONLY, label);
+  ctx.write(buffer, data, bytes);
+  return buffer;
+}
+}  // namespace
+
+Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const DeviceScene& scene) {
+  SceneBufferSet set;
+  set.spheres = upload_entries(ctx, scene.spheres, "spheres");
+  set.lights = upload_entries(ctx, scene.lights, "lights");
+  set.nodes = upload_entries(ctx, scene.bvh.nodes, "hierarchy nodes");
+  set.triangles = upload_entries(ctx, scene.triangles, "triangles");
+  set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
+  return set;
+}
+
+cl_uint Renderer::bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene) {
+  for (const Buffer* b : {&scene.spheres, &scene.lights, &scene.nodes, &scene.triangles, &scene.triangle_shading})
+    kernel.set_arg(first++, *b);
+  return first;
 }
 
 }  // namespace clpt

@@ -44,9 +44,15 @@ class Renderer {
   // (render_plan.h), which reports them.
   ProgramHandle build(DeviceContext& ctx, const std::string& entry_file, const KernelFeatures& features);
 
-  // The scene's sphere and light buffers (a light buffer is never empty: OpenCL has no
-  // zero-sized buffers; light_count in GpuRenderParams says how many entries count).
-  static void upload_scene(DeviceContext& ctx, const DeviceScene& scene, Buffer& spheres, Buffer& lights);
+  // The scene's buffers, in the kernels' argument order (kernels/bvh.cl, SceneBuffers). None is
+  // ever empty (OpenCL has no zero-sized buffers): an unused one holds a zeroed placeholder entry;
+  // GpuRenderParams' counts say how many entries count.
+  struct SceneBufferSet {
+    Buffer spheres, lights, nodes, triangles, triangle_shading;
+  };
+  static SceneBufferSet upload_scene(DeviceContext& ctx, const DeviceScene& scene);
+  // Sets the five scene buffers as arguments first, first + 1, ...; returns the next index.
+  static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
 
   double build_seconds_ = 0;
 };

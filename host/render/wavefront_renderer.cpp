@@ -29,7 +29,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   shade_ = Kernel(program_.get(), "wf_shade", ctx.where());
   film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where());
 
-  upload_scene(ctx, scene, spheres_, lights_);
+  scene_ = upload_scene(ctx, scene);
   // `real` state fields are float, or double under the double preset.
   const size_t real_bytes = features.precision == Precision::Double ? 8 : 4;
 #define CLPT_REAL_BYTES real_bytes
@@ -93,20 +93,19 @@ void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_beg
 // Closest hits, then shading, which stores the survivors densely into the other state set; swaps
 // the sets and returns the number of survivors.
 uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint32_t active) {
-  intersect_.set_arg(0, spheres_);
-  intersect_.set_arg(1, params);
-  intersect_.set_arg(2, active);
-  bind(intersect_, bind(intersect_, 3, scratch_), state_);
+  const cl_uint after_scene = bind_scene(intersect_, 0, scene_);
+  intersect_.set_arg(after_scene, params);
+  intersect_.set_arg(after_scene + 1, active);
+  bind(intersect_, bind(intersect_, after_scene + 2, scratch_), state_);
   record("intersect", ctx_.launch_profiled(intersect_, active, local_size_, "wf_intersect"));
   const cl_uint zero = 0;
   ctx_.write_async(survivors_, &zero, sizeof zero);
-  shade_.set_arg(0, spheres_);
-  shade_.set_arg(1, lights_);
-  shade_.set_arg(2, params);
-  shade_.set_arg(3, active);
-  shade_.set_arg(4, results_);
-  shade_.set_arg(5, survivors_);
-  bind(shade_, bind(shade_, bind(shade_, 6, scratch_), state_), next_state_);
+  bind_scene(shade_, 0, scene_);
+  shade_.set_arg(after_scene, params);
+  shade_.set_arg(after_scene + 1, active);
+  shade_.set_arg(after_scene + 2, results_);
+  shade_.set_arg(after_scene + 3, survivors_);
+  bind(shade_, bind(shade_, bind(shade_, after_scene + 4, scratch_), state_), next_state_);
   record("shade", ctx_.launch_profiled(shade_, active, local_size_, "wf_shade"));
   cl_uint survivors = 0;
   ctx_.read(survivors_, &survivors, sizeof survivors);  // blocking: `zero` lives until here

@@ -49,7 +49,7 @@ class WavefrontRenderer : public Renderer {
   size_t local_size_;
   ProgramHandle program_;
   Kernel generate_, intersect_, shade_, film_;
-  Buffer spheres_, lights_;
+  SceneBufferSet scene_;
   std::vector<Buffer> state_, next_state_;  // one per CLPT_PATH_STATE_FIELDS entry, twice
   std::vector<Buffer> scratch_;               // one per CLPT_PATH_SCRATCH_FIELDS entry
   Buffer survivors_, results_, pass_;

@@ -21,18 +21,67 @@ void store_split(float hi[3], float lo[3], const Vec3& v) {
   for (int i = 0; i < 3; ++i) hi[i] = store_split(v[i], lo[i]);
 }
 
+GpuMaterial to_gpu(const Material& m) {
+  GpuMaterial g{};
+  g.kind = static_cast<clpt_u32>(m.type);
+  store(g.reflectance, m.reflectance);
+  g.phong_exponent = static_cast<float>(m.phong_exponent);
+  store(g.emission, m.emission);
+  g.ior = static_cast<float>(m.ior);
+  return g;
+}
+
 GpuSphere to_gpu(const Sphere& s, const Vec3& anchor, const Vec3& camera_position) {
   GpuSphere g{};
   const SurfaceFrame frame = surface_frame(s, anchor);
   store_split(g.surface_point, g.surface_point_lo, sub(frame.point, camera_position));
   store_split(g.surface_normal, g.surface_normal_lo, frame.normal);
   g.radius = store_split(s.radius, g.radius_lo);
-  g.material = static_cast<clpt_u32>(s.material.type);
-  store(g.reflectance, s.material.reflectance);
-  g.phong_exponent = static_cast<float>(s.material.phong_exponent);
-  store(g.emission, s.material.emission);
-  g.ior = static_cast<float>(s.material.ior);
+  g.material = to_gpu(s.material);
   return g;
+}
+
+// The triangles of every mesh, camera-relative (subtracted in double, then rounded once: a
+// vertex shared by two triangles becomes the same float in both, which watertightness needs),
+// with their hierarchy primitives; spheres too when they are hierarchy primitives.
+void add_triangles(const Scene& scene, DeviceScene& out, std::vector<BvhPrimitive>& prims) {
+  const Vec3& camera = scene.camera.position;
+  for (const TriangleMesh& mesh : scene.meshes) {
+    std::vector<std::array<float, 3>> vertices;
+    vertices.reserve(mesh.positions.size());
+    for (const Vec3& p : mesh.positions) {
+      const Vec3 r = sub(p, camera);
+      vertices.push_back({static_cast<float>(r[0]), static_cast<float>(r[1]), static_cast<float>(r[2])});
+    }
+    GpuTriangleShading shading{};
+    shading.material = to_gpu(mesh.material);
+    shading.has_normals = mesh.normals.empty() ? 0u : 1u;
+    for (const auto& t : mesh.triangles) {
+      GpuTriangle g{};
+      BvhPrimitive prim;
+      float* corners[3] = {g.v0, g.v1, g.v2};
+      float* normals[3] = {shading.normal0, shading.normal1, shading.normal2};
+      for (int c = 0; c < 3; ++c) {
+        for (int k = 0; k < 3; ++k) corners[c][k] = vertices[t[c]][k];
+        prim.box.grow(vertices[t[c]]);
+        if (shading.has_normals) store(normals[c], mesh.normals[t[c]]);
+      }
+      prim.kind = PrimitiveKind::Triangle;
+      prim.index = static_cast<uint32_t>(out.triangles.size());
+      prims.push_back(prim);
+      out.triangles.push_back(g);
+      out.triangle_shading.push_back(shading);
+    }
+  }
+}
+
+// Reorders `v` so that entry i becomes v[order[i]].
+template <typename T>
+std::vector<T> permuted(const std::vector<T>& v, const std::vector<uint32_t>& order) {
+  std::vector<T> out;
+  out.reserve(order.size());
+  for (uint32_t i : order) out.push_back(v[i]);
+  return out;
 }
 
 }  // namespace
@@ -97,14 +146,42 @@ double ray_epsilon_for(const Camera& camera, Precision precision) {
 }
 
 DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision) {
-  // Issue 14 part A loads meshes; part B (branch bvh) uploads and traverses them and replaces
-  // this refusal, the one place that stands between a loaded mesh and the device.
-  if (!scene.meshes.empty())
-    throw Error(ExitCode::BadScene, scene.meshes[0].where.str() + ": mesh[0]: meshes are not rendered yet");
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
   out.lights = light_caps(scene);
+
+  std::vector<BvhPrimitive> prims;
+  add_triangles(scene, out, prims);
+  const bool spheres_in_bvh = spheres_in_hierarchy(scene);
+  const std::vector<bool> in_loop = loop_spheres(scene);
+  // The sphere buffer: the loop's spheres first (scene order), then the hierarchy's (leaf order).
+  std::vector<uint32_t> sphere_order;
+  for (size_t i = 0; i < in_loop.size(); ++i)
+    if (in_loop[i]) sphere_order.push_back(static_cast<uint32_t>(i));
+  out.loop_spheres = static_cast<uint32_t>(sphere_order.size());
+  if (spheres_in_bvh) {
+    for (size_t i = 0; i < scene.spheres.size(); ++i) {
+      if (in_loop[i]) continue;
+      BvhPrimitive prim;
+      prim.box = sphere_box(sub(scene.spheres[i].center, cam.position), scene.spheres[i].radius);
+      prim.kind = PrimitiveKind::Sphere;
+      prim.index = static_cast<uint32_t>(i);
+      prims.push_back(prim);
+    }
+  }
+  out.bvh = build_bvh(prims);
+  out.triangles = permuted(out.triangles, out.bvh.triangle_order);
+  out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
+  if (spheres_in_bvh) {
+    sphere_order.insert(sphere_order.end(), out.bvh.sphere_order.begin(), out.bvh.sphere_order.end());
+    for (GpuBvhNode& node : out.bvh.nodes)
+      if (node.count & CLPT_BVH_SPHERE_LEAF) node.first += out.loop_spheres;
+    out.spheres = permuted(out.spheres, sphere_order);
+    std::vector<uint32_t> new_index(scene.spheres.size());
+    for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);
+    for (GpuLight& light : out.lights) light.sphere = new_index[light.sphere];
+  }
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
   const Vec3 dir = normalize(sub(cam.look_at, cam.position));

@@ -6,13 +6,21 @@
 
 #include "kernels/types.h"
 #include "kernels/kernel_options.h"
+#include "scene/bvh_build.h"
 #include "scene/scene.h"
 
 namespace clpt {
 
 struct DeviceScene {
+  // Every sphere: first the loop's (kernel_options.h, loop_spheres) in the scene's order, then
+  // the hierarchy's primitives in its leaf order.
   std::vector<GpuSphere> spheres;
+  uint32_t loop_spheres = 0;  // spheres the kernels test in their loop (the first ones)
   std::vector<GpuLight> lights;  // emitters that next-event estimation samples (light_caps())
+  // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
+  std::vector<GpuTriangle> triangles;
+  std::vector<GpuTriangleShading> triangle_shading;
+  Bvh bvh;  // over the triangles, and the spheres when they are in it; no nodes when neither
   GpuCamera camera{};
   float ray_epsilon = 0;  // world units; see ray_epsilon_for()
 };

@@ -20,12 +20,12 @@ struct SourcePosition {
   std::string str() const;  // "file:line:column"
 };
 
-enum class MaterialType : uint32_t { Lambertian = 0, Phong = 1, Glass = 2, Emitter = 3 };
+enum class MaterialType : uint32_t { Lambertian = 0, Phong = 1, Glass = 2, Emitter = 3, Mirror = 4 };
 const char* material_type_name(MaterialType type);
 
 struct Material {
   MaterialType type = MaterialType::Lambertian;
-  Vec3 reflectance{0, 0, 0};  // albedo rho per channel, in [0, 1] (Lambertian, Phong, glass)
+  Vec3 reflectance{0, 0, 0};  // albedo rho per channel, in [0, 1] (Lambertian, Phong, glass, mirror)
   double phong_exponent = 0;  // Phong lobe exponent n >= 0
   double ior = 1.5;           // glass index of refraction inside; outside is 1
   Vec3 emission{0, 0, 0};     // emitted radiance per channel (emitters), >= 0

@@ -42,6 +42,8 @@ const char* material_type_name(MaterialType type) {
       return "glass";
     case MaterialType::Emitter:
       return "emitter";
+    case MaterialType::Mirror:
+      return "mirror";
   }
   return "unknown";
 }
@@ -80,7 +82,8 @@ using scene_detail::fail;
 using scene_detail::SourceMap;
 
 constexpr MaterialType kMaterialTypes[] = {MaterialType::Lambertian, MaterialType::Phong,
-                                           MaterialType::Glass, MaterialType::Emitter};
+                                           MaterialType::Glass, MaterialType::Emitter,
+                                           MaterialType::Mirror};
 
 // Levenshtein distance; keys are short, so the O(n m) table is cheap.
 size_t edit_distance(std::string_view a, std::string_view b) {
@@ -415,6 +418,8 @@ std::vector<std::string> material_parameters(MaterialType type) {
       return {"reflectance", "ior"};
     case MaterialType::Emitter:
       return {"emission"};
+    case MaterialType::Mirror:
+      return {"reflectance"};
   }
   return {};
 }

@@ -88,6 +88,7 @@ void check_emission(const Vec3& emission, const std::string& key, const SourceMa
 void check_material(const Material& m, const std::string& key, const SourceMap& sources) {
   switch (m.type) {
     case MaterialType::Lambertian:
+    case MaterialType::Mirror:
       check_reflectance(m.reflectance, key + ".reflectance", sources);
       break;
     case MaterialType::Phong:

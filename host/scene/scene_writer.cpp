@@ -22,6 +22,7 @@ toml::table material_table(const Material& m) {
   toml::table t{{"type", material_type_name(m.type)}};
   switch (m.type) {
     case MaterialType::Lambertian:
+    case MaterialType::Mirror:
       t.insert("reflectance", vec3_array(m.reflectance));
       break;
     case MaterialType::Phong:

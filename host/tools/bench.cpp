@@ -77,6 +77,15 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   const RenderPlan plan = plan_render(request, {device});
   const DevicePlan& planned = plan.devices.front();
   const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
+  row.triangles = ds.triangles.size();
+  row.hierarchy_spheres = ds.bvh.sphere_order.size();
+  row.bvh_nodes = ds.bvh.nodes.size();
+  row.bvh_depth = ds.bvh.depth;
+  row.bvh_build_s = ds.bvh.build_seconds;
+  if (row.triangles > 0)
+    row.device_bytes_per_triangle =
+        double(row.triangles * (sizeof(GpuTriangle) + sizeof(GpuTriangleShading)) + row.bvh_nodes * sizeof(GpuBvhNode)) /
+        double(row.triangles);
 
   RenderPlan cold = plan;
   cold.devices.front().features.build_nonce = std::random_device{}() | 1u;
@@ -250,6 +259,14 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
       }
       o << "; " << r.paths_in_flight << " paths in flight\n";
     }
+    if (r.bvh_nodes > 0) {
+      std::snprintf(line, sizeof line,
+                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s on the host; "
+                    "%.1f device B/triangle\n",
+                    static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
+                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.device_bytes_per_triangle);
+      o << line;
+    }
     for (const RankRate& k : r.ranks) {
       std::snprintf(line, sizeof line, "    on %d MPI rank%s: M paths/s %s, efficiency %.0f%%\n", k.ranks,
                     k.ranks == 1 ? "" : "s", format_rate(k.paths_per_s).c_str(), 100 * k.efficiency);
@@ -272,13 +289,16 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
       return nlohmann::json{{"median", s.median}, {"min", s.min}, {"max", s.max}};
     };
     nlohmann::json row = {{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
-                     {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
-                     {"device", r.device}, {"local_size", r.local_size},
-                     {"paths_in_flight", r.paths_in_flight},
-                     {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
-                     {"paths_per_s", spread(r.paths_per_s)},
-                     {"segments_per_s", spread(r.segments_per_s)},
-                     {"stage_seconds", stages}};
+                          {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
+                          {"device", r.device}, {"local_size", r.local_size},
+                          {"paths_in_flight", r.paths_in_flight},
+                          {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
+                          {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
+                          {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
+                          {"device_bytes_per_triangle", r.device_bytes_per_triangle},
+                          {"paths_per_s", spread(r.paths_per_s)},
+                          {"segments_per_s", spread(r.segments_per_s)},
+                          {"stage_seconds", stages}};
     if (!r.ranks.empty()) {
       row["ranks"] = nlohmann::json::array();
       for (const RankRate& k : r.ranks)

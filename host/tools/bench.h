@@ -58,6 +58,12 @@ struct BenchRow {
   size_t local_size = 0;  // the work-group size as run; 0: the driver's choice
   uint32_t paths_in_flight = 0;
   double build_cold_s = 0, build_cached_s = 0;
+  // The bounding volume hierarchy (none: nodes 0): what it holds, its host build time and the
+  // device bytes its triangles take (GpuTriangle + GpuTriangleShading + the nodes, per triangle).
+  uint64_t triangles = 0, hierarchy_spheres = 0, bvh_nodes = 0;
+  int bvh_depth = 0;
+  double bvh_build_s = 0;
+  double device_bytes_per_triangle = 0;
   Spread paths_per_s, segments_per_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
   std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty

@@ -6,6 +6,7 @@
 #include "sampler.cl"
 #include "camera.cl"
 #include "intersect.cl"
+#include "bvh.cl"
 #include "bsdf.cl"
 
 CLPT_INLINE Vec3 v3_from4(float4 v) { return v3(v.x, v.y, v.z); }
@@ -38,6 +39,47 @@ __kernel void probe_intersect(__global const GpuSphere* spheres, uint count,
   const Vec3 d = v3_from4(rays[2 * i + 1]);
   const Hit hit = scene_intersect(spheres, count, o, d, t_min, (int)rays[2 * i].w);
   out[i] = (float2)(hit.t, (float)hit.sphere);
+}
+
+/* Scene queries of ray i (camera-relative origin, unit direction; no sphere skipped), answered by
+ * the hierarchy (brute_force 0: bvh.cl's scene_closest_hit and scene_hierarchy_occluded, as the
+ * renderer calls them) or by testing every primitive with the same intersection functions
+ * (brute_force 1: sphere_count spheres, triangle_count triangles). out[2i] = (t, sphere, triangle,
+ * 0); out[2i + 1] = (occluded before shadow_near[i], occluded before shadow_far[i], 0, 0). */
+__kernel void probe_scene_hit(__global const GpuSphere* spheres, __global const GpuBvhNode* nodes,
+                              __global const GpuTriangle* triangles, const GpuRenderParams params,
+                              uint brute_force, uint sphere_count, uint triangle_count,
+                              __global const float4* rays, __global const float2* shadow_t, __global float4* out) {
+  const size_t i = get_global_id(0);
+  const Vec3 o = v3_from4(rays[2 * i]);
+  const Vec3 d = v3_from4(rays[2 * i + 1]);
+  const SceneBuffers scene = scene_buffers(spheres, 0, nodes, triangles, 0);
+  Hit hit = no_hit();
+  bool near_blocked = false, far_blocked = false;
+  if (brute_force) {
+    const ShearedRay ray = sheared_ray(o, d);
+    for (uint k = 0; k < sphere_count; ++k) {
+      const real t = sphere_intersect(&spheres[k], o, d, params.ray_epsilon);
+      if (t < hit.t) {
+        hit.t = t;
+        hit.sphere = (int)k;
+      }
+    }
+    for (uint k = 0; k < triangle_count; ++k) {
+      const real t = triangle_intersect(&ray, &triangles[k], hit.t);
+      if (t < hit.t) {
+        hit.t = t;
+        hit.sphere = -1;
+        hit.triangle = (int)k;
+      }
+    }
+  } else {
+    hit = scene_closest_hit(&scene, &params, o, d, -1);
+    near_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].x, -1);
+    far_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].y, -1);
+  }
+  out[2 * i] = (float4)(hit.t, (float)hit.sphere, (float)hit.triangle, 0.0f);
+  out[2 * i + 1] = (float4)(near_blocked ? 1.0f : 0.0f, far_blocked ? 1.0f : 0.0f, 0.0f, 0.0f);
 }
 
 /* Camera direction for pixel (col,row) with a given sub-pixel offset. */

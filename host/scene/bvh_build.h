@@ -1,0 +1,57 @@
+// The bounding volume hierarchy the kernels traverse (kernels/bvh.cl): built on the host by a
+// binned surface area heuristic over primitive boxes, flattened depth first into GpuBvhNode
+// (kernels/types.h). Leaves hold primitives of one kind, so the kernels' leaf loops test only
+// triangles or only spheres.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/types.h"
+
+namespace clpt {
+
+enum class PrimitiveKind : uint32_t { Triangle = 0, Sphere = 1 };
+
+// An axis-aligned box in the kernels' (camera-relative, float) coordinates.
+struct BvhBox {
+  std::array<float, 3> lower{{1e30f, 1e30f, 1e30f}};
+  std::array<float, 3> upper{{-1e30f, -1e30f, -1e30f}};
+  void grow(const BvhBox& b);
+  void grow(const std::array<float, 3>& p);
+  double half_area() const;  // 0 for an empty box
+};
+
+struct BvhPrimitive {
+  BvhBox box;
+  PrimitiveKind kind = PrimitiveKind::Triangle;
+  uint32_t index = 0;  // the primitive's index among those of its kind, in the caller's order
+};
+
+struct BvhBuildOptions {
+  int bins = 16;      // candidate split planes per axis and node
+  int max_leaf = 4;   // a range this small (or smaller) may become a leaf when the SAH says so
+  double traversal_cost = 1.0;  // SAH cost of visiting a node, against 1 per primitive test
+};
+
+struct Bvh {
+  std::vector<GpuBvhNode> nodes;  // depth first: nodes[0] is the root; empty for no primitives
+  // Leaf order: triangle_order[i] is the caller's index of the triangle the kernels store at i
+  // (GpuBvhNode.first counts in this order); likewise sphere_order.
+  std::vector<uint32_t> triangle_order;
+  std::vector<uint32_t> sphere_order;
+  int depth = 0;           // nodes on the longest root-to-leaf path
+  double build_seconds = 0;
+};
+
+// Builds the hierarchy over `primitives`. Throws Error (exit code as for scenes) when the
+// hierarchy would be deeper than the kernels' traversal stack (CLPT_BVH_STACK), which a binned
+// SAH build of any real scene stays far below.
+Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options = {});
+
+// The box of a sphere centred at `center` (camera-relative, double) with radius r, rounded
+// outwards to float so that it contains the sphere the kernels intersect.
+BvhBox sphere_box(const std::array<double, 3>& center, double radius);
+
+}  // namespace clpt

@@ -1,0 +1,176 @@
+/* bvh.cl: the ray/scene queries: closest hit (path segments) and any hit (shadow rays).
+ *
+ * A scene's primitives are spheres in today's loop (intersect.cl) and, when the host built one,
+ * a bounding volume hierarchy (GpuBvhNode, types.h) over the triangles and, for scenes of more
+ * than a few spheres, the spheres too (host: kernel_options.cpp decides, scene/bvh_build.cpp
+ * builds). Both queries are written once here and called by the stage functions of path.cl, so
+ * the megakernel and the wavefront traverse alike.
+ *
+ * Traversal: a fixed stack of CLPT_BVH_STACK node indices (the host refuses deeper hierarchies);
+ * at an interior node both children's boxes are tested and the nearer is visited first, the
+ * farther pushed. The slab test's far distance is widened by 1 + 2 gamma(3) (Ize, "Robust BVH Ray
+ * Traversal", JCGT 2013), with boxes rounded outwards on the host, so no rounding makes a ray miss
+ * a box that holds its hit. Compiled only with CLPT_HAS_BVH (kernel_options.cpp); without, the
+ * queries are the sphere loop alone and no traversal code exists in the kernel.
+ *
+ * Hit ids: Hit.sphere is a sphere index or -1, Hit.triangle a triangle index or -1. */
+#ifndef CLPT_BVH_CL
+#define CLPT_BVH_CL
+
+#include "types.h"
+#include "maths.cl"
+#include "intersect.cl"
+#include "triangle.cl"
+
+#ifndef CLPT_HAS_BVH
+#define CLPT_HAS_BVH 1
+#endif
+#ifndef CLPT_HAS_TRIANGLES
+#define CLPT_HAS_TRIANGLES 1
+#endif
+
+/* Every buffer that holds geometry (and the lights), as the kernels receive them. */
+typedef struct SceneBuffers {
+  __global const GpuSphere* spheres;
+  __global const GpuLight* lights;
+  __global const GpuBvhNode* nodes;
+  __global const GpuTriangle* triangles;
+  __global const GpuTriangleShading* triangle_shading;
+} SceneBuffers;
+
+CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __global const GpuLight* lights,
+                                       __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
+                                       __global const GpuTriangleShading* triangle_shading) {
+  SceneBuffers s;
+  s.spheres = spheres;
+  s.lights = lights;
+  s.nodes = nodes;
+  s.triangles = triangles;
+  s.triangle_shading = triangle_shading;
+  return s;
+}
+
+#if CLPT_HAS_BVH
+/* Entry distance of the ray into the box, or CLPT_NO_HIT when it misses it in [0, t_max]. */
+CLPT_INLINE real box_entry(__global const GpuBvhNode* node, Vec3 o, Vec3 inv_d, real t_max) {
+  const real x0 = ((real)node->lower[0] - o.x) * inv_d.x, x1 = ((real)node->upper[0] - o.x) * inv_d.x;
+  const real y0 = ((real)node->lower[1] - o.y) * inv_d.y, y1 = ((real)node->upper[1] - o.y) * inv_d.y;
+  const real z0 = ((real)node->lower[2] - o.z) * inv_d.z, z1 = ((real)node->upper[2] - o.z) * inv_d.z;
+  const real tx_near = x0 < x1 ? x0 : x1, tx_far = x0 < x1 ? x1 : x0;
+  const real ty_near = y0 < y1 ? y0 : y1, ty_far = y0 < y1 ? y1 : y0;
+  const real tz_near = z0 < z1 ? z0 : z1, tz_far = z0 < z1 ? z1 : z0;
+  const real t_near_xy = tx_near > ty_near ? tx_near : ty_near;
+  const real t_near = t_near_xy > tz_near ? t_near_xy : tz_near;
+  const real t_far_xy = tx_far < ty_far ? tx_far : ty_far;
+  const real t_far = (t_far_xy < tz_far ? t_far_xy : tz_far) * (real)1.0000004f; /* 1 + 2 gamma(3) */
+  const real entry = t_near > (real)0 ? t_near : (real)0;
+  return entry <= t_far && entry < t_max ? entry : CLPT_NO_HIT;
+}
+
+/* 1/d per component; a zero component becomes 1/(+-1e-30), so that 0 * inf never makes a NaN. */
+CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
+  const real tiny = (real)1e-30f;
+  return v3((real)1 / (fabs(d.x) > tiny ? d.x : copysign(tiny, d.x)),
+            (real)1 / (fabs(d.y) > tiny ? d.y : copysign(tiny, d.y)),
+            (real)1 / (fabs(d.z) > tiny ? d.z : copysign(tiny, d.z)));
+}
+
+/* Walks the hierarchy for the closest hit before hit->t (any_hit: stops at the first hit, for a
+ * shadow ray whose hit->t is the distance to the light). Spheres keep intersect.cl's contract:
+ * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit. */
+CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
+                              int skip, bool any_hit, Hit* hit) {
+  if (node_count == 0u) return;
+  const Vec3 inv_d = inverse_direction(d);
+  const ShearedRay ray = sheared_ray(o, d);
+  uint stack[CLPT_BVH_STACK];
+  uint depth = 0u;
+  uint node = 0u;
+  bool done = box_entry(&scene->nodes[0], o, inv_d, hit->t) >= CLPT_NO_HIT;
+  while (!done) {
+    __global const GpuBvhNode* n = &scene->nodes[node];
+    bool pop = true;
+    if (n->count == 0u) {
+      const uint a = node + 1u, b = n->first;
+      const real ta = box_entry(&scene->nodes[a], o, inv_d, hit->t);
+      const real tb = box_entry(&scene->nodes[b], o, inv_d, hit->t);
+      const bool hit_a = ta < CLPT_NO_HIT, hit_b = tb < CLPT_NO_HIT;
+      if (hit_a || hit_b) {
+        pop = false;
+        const bool a_first = hit_a && (!hit_b || ta <= tb);
+        node = a_first ? a : b;
+        if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
+      }
+    } else {
+      const uint first = n->first;
+      const uint count = n->count & CLPT_BVH_COUNT_MASK;
+      if (n->count & CLPT_BVH_SPHERE_LEAF) {
+        for (uint i = first; i < first + count; ++i) {
+          const real t = sphere_intersect(&scene->spheres[i], o, d, t_min);
+          const bool closer = t < hit->t && (int)i != skip;
+          hit->t = closer ? t : hit->t;
+          hit->sphere = closer ? (int)i : hit->sphere;
+          hit->triangle = closer ? -1 : hit->triangle;
+        }
+      } else {
+#if CLPT_HAS_TRIANGLES
+        for (uint i = first; i < first + count; ++i) {
+          const real t = triangle_intersect(&ray, &scene->triangles[i], hit->t);
+          const bool closer = t < hit->t;
+          hit->t = closer ? t : hit->t;
+          hit->sphere = closer ? -1 : hit->sphere;
+          hit->triangle = closer ? (int)i : hit->triangle;
+        }
+#endif
+      }
+      done = any_hit && (hit->sphere >= 0 || hit->triangle >= 0);
+    }
+    if (pop && !done) {
+      done = depth == 0u;
+      node = done ? 0u : stack[--depth];
+      /* A popped node may lie behind a hit found since it was pushed: its children's boxes are
+       * tested against hit->t when it is opened, and its own leaf primitives test t < hit->t. */
+    }
+  }
+}
+#endif
+
+CLPT_INLINE Hit no_hit(void) {
+  Hit hit;
+  hit.t = CLPT_NO_HIT;
+  hit.sphere = -1;
+  hit.triangle = -1;
+  return hit;
+}
+
+/* Closest hit over the loop's spheres and the hierarchy. */
+CLPT_INLINE Hit scene_closest_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d,
+                                  int skip) {
+  Hit hit = scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
+#if CLPT_HAS_BVH
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, false, &hit);
+#endif
+  return hit;
+}
+
+/* Whether anything of the hierarchy lies along the ray before t_max (a shadow ray's test; the
+ * loop's spheres are tested by the caller's closest hit, path.cl). Without a hierarchy: false. */
+CLPT_INLINE bool scene_hierarchy_occluded(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o,
+                                          Vec3 d, real t_max, int skip) {
+#if CLPT_HAS_BVH
+  Hit hit = no_hit();
+  hit.t = t_max;
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, true, &hit);
+  return hit.sphere >= 0 || hit.triangle >= 0;
+#else
+  (void)scene;
+  (void)params;
+  (void)o;
+  (void)d;
+  (void)t_max;
+  (void)skip;
+  return false;
+#endif
+}
+
+#endif

@@ -1,0 +1,264 @@
+// The bounding volume hierarchy and the triangle test (scene/bvh_build.cpp, kernels/bvh.cl,
+// kernels/triangle.cl): the host's tree is well formed; on the device, the hierarchy's closest hit
+// equals testing every primitive, over meshes, spheres in the hierarchy and both mixed; rays aimed
+// at the shared edges and vertices of closed meshes never escape them (watertightness); shadow
+// rays' any-hit answers agree with closest-hit distances.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "device_test_util.h"
+#include "mesh_test_util.h"
+#include "scene/device_scene.h"
+
+namespace clpt::test {
+namespace {
+
+Scene scene_with(std::vector<TriangleMesh> meshes, std::vector<Sphere> spheres = {}) {
+  Scene scene;
+  scene.file = "test";
+  scene.camera.position = {0.25, -0.5, 7};
+  scene.camera.look_at = {0, 0, 0};
+  scene.meshes = std::move(meshes);
+  scene.spheres = std::move(spheres);
+  return scene;
+}
+
+std::vector<Sphere> random_spheres(std::mt19937& rng, int count, double extent) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Sphere> spheres;
+  for (int i = 0; i < count; ++i) {
+    Sphere s;
+    s.name = "ball" + std::to_string(i);
+    s.center = {extent * u(rng), extent * u(rng), extent * u(rng)};
+    s.radius = 0.05 + 0.2 * (u(rng) + 1);
+    s.material = lambertian(0.5);
+    spheres.push_back(s);
+  }
+  return spheres;
+}
+
+Vec3 unit_of(const Vec3& v) {
+  const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return {v[0] / l, v[1] / l, v[2] / l};
+}
+
+struct Ray {
+  Vec3 origin;  // world
+  Vec3 direction;
+};
+
+struct DeviceAnswer {
+  float t;
+  int sphere, triangle;
+  bool blocked_before, blocked_after;
+};
+
+// Runs probe_scene_hit (tests/kernels/probe_stages.cl) on world-space rays; shadow distances at
+// (1 -+ 1e-4) of `shadow_at` per ray -+ 1e-5 (the boxes' slab test rounds like coordinates of
+// size 3, about 1e-6 absolute, which a relative margin alone misses for hits very near the origin).
+std::vector<DeviceAnswer> query(const Scene& scene, const DeviceScene& ds, const std::vector<Ray>& rays,
+                                bool brute_force, const std::vector<float>& shadow_at = {}) {
+  std::vector<cl_float4> packed;
+  std::vector<cl_float2> shadow;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& r = rays[i];
+    const Vec3& c = scene.camera.position;
+    packed.push_back({{float(r.origin[0] - c[0]), float(r.origin[1] - c[1]), float(r.origin[2] - c[2]), 0}});
+    packed.push_back({{float(r.direction[0]), float(r.direction[1]), float(r.direction[2]), 0}});
+    const float at = shadow_at.empty() ? 1.0f : shadow_at[i];
+    shadow.push_back({{at * (1 - 1e-4f) - 1e-5f, at * (1 + 1e-4f) + 1e-5f}});
+  }
+  GpuRenderParams params{};
+  params.sphere_count = ds.loop_spheres;
+  params.bvh_node_count = cl_uint(ds.bvh.nodes.size());
+  params.ray_epsilon = ds.ray_epsilon;
+  Kernel kernel(test_program("probe_stages.cl"), "probe_scene_hit", test_device().where());
+  Buffer spheres = upload(ds.spheres), nodes = upload(ds.bvh.nodes), triangles = upload(ds.triangles);
+  Buffer in = upload(packed), shadow_in = upload(shadow);
+  Buffer out(test_device(), rays.size() * 2 * sizeof(cl_float4), CL_MEM_WRITE_ONLY, "answers");
+  kernel.set_arg(0, spheres);
+  kernel.set_arg(1, nodes);
+  kernel.set_arg(2, triangles);
+  kernel.set_arg(3, params);
+  kernel.set_arg(4, cl_uint(brute_force ? 1 : 0));
+  kernel.set_arg(5, cl_uint(ds.spheres.size()));
+  kernel.set_arg(6, cl_uint(ds.triangles.size()));
+  kernel.set_arg(7, in);
+  kernel.set_arg(8, shadow_in);
+  kernel.set_arg(9, out);
+  test_device().launch(kernel, rays.size(), 0, "probe_scene_hit");
+  const std::vector<cl_float4> raw = download<cl_float4>(out, rays.size() * 2);
+  std::vector<DeviceAnswer> answers;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const cl_float4& a = raw[2 * i];
+    const cl_float4& b = raw[2 * i + 1];
+    answers.push_back({a.s[0], int(a.s[1]), int(a.s[2]), b.s[0] != 0, b.s[1] != 0});
+  }
+  return answers;
+}
+
+std::vector<Ray> random_rays(std::mt19937& rng, int count, double extent) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::normal_distribution<double> g;
+  std::vector<Ray> rays;
+  for (int i = 0; i < count; ++i)
+    rays.push_back({{extent * u(rng), extent * u(rng), extent * u(rng)}, unit_of({g(rng), g(rng), g(rng)})});
+  return rays;
+}
+
+// Scenes for the brute-force comparison: a soup, closed meshes, many spheres (in the hierarchy),
+// and spheres and triangles mixed.
+std::vector<Scene> comparison_scenes() {
+  std::mt19937 rng(7);
+  std::vector<Scene> scenes;
+  scenes.push_back(scene_with({random_soup(rng, 3000, {0, 0, 0}, 2.0, 0.3, lambertian(0.5))}));
+  scenes.push_back(scene_with({tessellated_sphere({0.3, 0.1, -0.2}, 1.3, 40, 60, lambertian(0.5)),
+                               closed_box({-2.5, -2.5, -2.5}, {2.5, 2.5, 2.5}, lambertian(0.5))}));
+  scenes.push_back(scene_with({}, random_spheres(rng, 200, 2.0)));
+  // Large spheres among small ones: the large stay in the loop (loop_spheres), the rest in the tree.
+  std::vector<Sphere> walls = random_spheres(rng, 60, 2.0);
+  for (int k = 0; k < 3; ++k) {
+    walls[size_t(k)].radius = 1e4;
+    walls[size_t(k)].center = {k == 0 ? -1e4 - 3 : 0.0, k == 1 ? -1e4 - 3 : 0.0, k == 2 ? -1e4 - 3 : 0.0};
+  }
+  scenes.push_back(scene_with({random_soup(rng, 500, {0, 0, 0}, 2.0, 0.4, lambertian(0.5))}, walls));
+  scenes.push_back(scene_with({random_soup(rng, 1500, {0, 0, 0}, 2.0, 0.4, lambertian(0.5)),
+                               tessellated_sphere({-1, 0.5, 0.5}, 0.7, 12, 20, lambertian(0.5))},
+                              random_spheres(rng, 100, 2.0)));
+  return scenes;
+}
+
+TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
+  for (const Scene& scene : comparison_scenes()) {
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    const Bvh& bvh = ds.bvh;
+    ASSERT_FALSE(bvh.nodes.empty());
+    EXPECT_LE(bvh.depth, CLPT_BVH_STACK);
+    std::vector<int> tri_seen(ds.triangles.size(), 0), sphere_seen(ds.spheres.size(), 0);
+    for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+      const GpuBvhNode& n = bvh.nodes[i];
+      if (n.count == 0) {
+        ASSERT_LT(n.first, bvh.nodes.size());
+        ASSERT_GT(n.first, i + 1);
+        for (const GpuBvhNode* child : {&bvh.nodes[i + 1], &bvh.nodes[n.first]})
+          for (int k = 0; k < 3; ++k) {
+            EXPECT_LE(n.lower[k], child->lower[k]);
+            EXPECT_GE(n.upper[k], child->upper[k]);
+          }
+        continue;
+      }
+      const bool spheres = n.count & CLPT_BVH_SPHERE_LEAF;
+      std::vector<int>& seen = spheres ? sphere_seen : tri_seen;
+      const uint32_t count = n.count & CLPT_BVH_COUNT_MASK;
+      ASSERT_LE(n.first + count, seen.size());
+      for (uint32_t j = n.first; j < n.first + count; ++j) {
+        ++seen[j];
+        if (spheres) continue;
+        for (const float* v : {ds.triangles[j].v0, ds.triangles[j].v1, ds.triangles[j].v2})
+          for (int k = 0; k < 3; ++k) {
+            EXPECT_LE(n.lower[k], v[k]);
+            EXPECT_GE(n.upper[k], v[k]);
+          }
+      }
+    }
+    for (int s : tri_seen) EXPECT_EQ(s, 1);
+    // The loop's spheres come first and are in no leaf; every other sphere is in exactly one.
+    if (spheres_in_hierarchy(scene)) {
+      for (size_t i = 0; i < sphere_seen.size(); ++i) EXPECT_EQ(sphere_seen[i], i < ds.loop_spheres ? 0 : 1) << i;
+    }
+  }
+}
+
+TEST(BvhTraversal, ClosestHitEqualsBruteForceOverEveryPrimitive) {
+  std::mt19937 rng(11);
+  int rays_total = 0, misses = 0, ties = 0;
+  for (const Scene& scene : comparison_scenes()) {
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    const std::vector<Ray> rays = random_rays(rng, 30000, 3.0);
+    const auto bvh = query(scene, ds, rays, false);
+    const auto brute = query(scene, ds, rays, true);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      ASSERT_EQ(bvh[i].t, brute[i].t) << scene.meshes.size() << " meshes, ray " << i;
+      const bool same = bvh[i].sphere == brute[i].sphere && bvh[i].triangle == brute[i].triangle;
+      ties += same ? 0 : 1;  // equal distances to two primitives (a shared edge): either may report
+      misses += bvh[i].t >= 1e29f ? 1 : 0;
+    }
+    rays_total += int(rays.size());
+  }
+  EXPECT_GE(rays_total, 100000);
+  EXPECT_LT(ties, rays_total / 1000);
+  EXPECT_GT(rays_total - misses, rays_total / 5);  // enough rays hit something for the comparison to mean something
+}
+
+// Ray origins inside a closed mesh, aimed exactly at its vertices and at points on its edges
+// (midpoints and random points), must hit the mesh: no ray slips between two triangles.
+TEST(BvhTraversal, RaysAtSharedEdgesAndVerticesOfClosedMeshesNeverEscape) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> u(0, 1), v(-1, 1);
+  const std::vector<Scene> scenes = {
+      scene_with({tessellated_sphere({0.1, -0.2, 0.3}, 1.7, 64, 96, lambertian(0.5))}),
+      scene_with({closed_box({-1.1, -0.9, -1.3}, {1.2, 1.0, 0.8}, lambertian(0.5))}),
+      scene_with({tessellated_sphere({0, 0, 0}, 2.5e3, 30, 45, lambertian(0.5))})};
+  int total = 0;
+  for (const Scene& scene : scenes) {
+    const TriangleMesh& mesh = scene.meshes[0];
+    // The centre of the mesh's bounding box and its smallest half extent: both meshes are convex
+    // and hold the box of half that size around the centre.
+    Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+    for (const Vec3& p : mesh.positions)
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    const Vec3 centre = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    const double r = std::min({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / 2;
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    std::vector<Ray> rays;
+    const int per_scene = scene.meshes[0].triangles.size() > 100 ? 450000 : 100000;
+    while (int(rays.size()) < per_scene) {
+      const auto& tri = mesh.triangles[rng() % mesh.triangles.size()];
+      const int e = int(rng() % 3);
+      const Vec3& a = mesh.positions[tri[e]];
+      const Vec3& b = mesh.positions[tri[(e + 1) % 3]];
+      const int pick = int(rng() % 3);  // a vertex, an edge midpoint, a random point on the edge
+      const double s = pick == 0 ? 0.0 : pick == 1 ? 0.5 : u(rng);
+      const Vec3 target = {a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])};
+      // Origins inside: within 0.3 of the size around the centre (the box and spheres contain it).
+      const Vec3 o = {centre[0] + 0.3 * r * v(rng), centre[1] + 0.3 * r * v(rng), centre[2] + 0.3 * r * v(rng)};
+      rays.push_back({o, unit_of({target[0] - o[0], target[1] - o[1], target[2] - o[2]})});
+    }
+    const auto answers = query(scene, ds, rays, false);
+    int escaped = 0;
+    for (const DeviceAnswer& a : answers) escaped += a.triangle < 0 ? 1 : 0;
+    EXPECT_EQ(escaped, 0) << mesh.triangles.size() << " triangles";
+    total += int(rays.size());
+  }
+  EXPECT_GE(total, 1000000);
+}
+
+// Any-hit shadow queries agree with the closest hit: nothing blocks a ray before (1 - 1e-4) of its
+// closest hit (less 1e-5), something blocks it before (1 + 1e-4) of it (plus 1e-5).
+TEST(BvhTraversal, ShadowAnyHitAgreesWithClosestHitDistance) {
+  std::mt19937 rng(17);
+  for (const Scene& scene : comparison_scenes()) {
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    const std::vector<Ray> rays = random_rays(rng, 20000, 3.0);
+    const auto closest = query(scene, ds, rays, false);
+    std::vector<float> at;  // a ray whose closest hit is a loop sphere asks up to that distance too
+    for (const DeviceAnswer& a : closest) at.push_back(a.t < 1e29f ? a.t : 1e6f);
+    const auto shadow = query(scene, ds, rays, false, at);
+    int hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      // The any-hit query covers the hierarchy; the loop's spheres are the caller's (path.cl).
+      const bool in_loop = closest[i].sphere >= 0 && closest[i].sphere < int(ds.loop_spheres);
+      const bool hit = closest[i].t < 1e29f && !in_loop;
+      hits += hit ? 1 : 0;
+      ASSERT_FALSE(shadow[i].blocked_before) << "ray " << i << " at t " << closest[i].t;
+      ASSERT_EQ(shadow[i].blocked_after, hit) << "ray " << i << " at t " << closest[i].t;
+    }
+    EXPECT_GT(hits, 1000);
+  }
+}
+
+}  // namespace
+}  // namespace clpt::test
