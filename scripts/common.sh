@@ -7,7 +7,7 @@ CLPT_BUILD=${CLPT_BUILD:-$CLPT_ROOT/build}
 # What each package is for is in README.md ("Dependencies").
 CLPT_PACKAGES=(cmake g++ make ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd
                libopenimageio-dev openimageio-tools libopenexr-dev libpng-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev gnuplot-nox
-               libopenmpi-dev openmpi-bin)
+               libopenmpi-dev openmpi-bin python3)
 # Tests: GoogleTest; python3 checks the JSON and CSV that bench, compare and tradeoff write;
 # Oclgrind is the second OpenCL implementation (label xdev); clang-14 with libclc-14 compiles the
 # kernels for NVIDIA (nvptx64) and AMD (amdgcn) targets (label gpucc).
@@ -43,7 +43,7 @@ clpt_install_missing() {
 }
 
 # clpt_generate_meshes: writes the generated mesh of scenes/torus-knot.toml if it is missing
-# (scripts/make_mesh_scene.py; python3 is in the base system of Debian 12 and in CLPT_TEST_PACKAGES).
+# (scripts/make_mesh_scene.py; python3 is in CLPT_PACKAGES for it: a minimal Debian 12 has none).
 clpt_generate_meshes() {
   [[ -f "$CLPT_ROOT/scenes/meshes/torus_knot.ply" ]] || python3 "$CLPT_ROOT/scripts/make_mesh_scene.py" >&2
 }
