@@ -1,5 +1,6 @@
 // Limits, launch sizing, partial passes and checkpoints: host code only, no device needed.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -152,8 +153,11 @@ TEST(Limits, MemoryErrorsNameTheDeviceAndSizes) {
 
 class Checkpoint : public ::testing::Test {
  protected:
+  // One file per process and test: ctest runs the tests in parallel processes (gtest's random
+  // seed, used here before, comes from the clock and two processes drew the same one).
   std::string path_ = (std::filesystem::temp_directory_path() /
-                       ("clpt_test_checkpoint_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".ckpt"))
+                       ("clpt_test_checkpoint_" + std::to_string(::getpid()) + "_" +
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".ckpt"))
                           .string();
   void TearDown() override { std::remove(path_.c_str()); }
 };
