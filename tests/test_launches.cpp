@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "render_test_util.h"
 
@@ -44,14 +45,19 @@ TEST(Launches, ManySmallLaunchesEqualOneLaunch) {
   EXPECT_EQ(b.samples_per_pixel(), 16u);
 }
 
+// A render resumed from its own 12-spp film and continued to 40 spp, and the same render straight
+// to 40 spp: {resumed, straight}.
+std::pair<Film, Film> resumed_and_straight(ExecutionForm form, Sampler sampler) {
+  RenderReport r1, r2, r3;
+  RenderRequest second = small_request(form, sampler, 40);
+  second.resume = run_render(small_request(form, sampler, 12), r1);
+  Film resumed = run_render(second, r2);
+  return {std::move(resumed), run_render(small_request(form, sampler, 40), r3)};
+}
+
 TEST(Launches, ResumedRenderEqualsStraightRender) {
   for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
-    RenderRequest first = small_request(form, Sampler::Jitter, 12);
-    RenderReport r1, r2, r3;
-    RenderRequest second = small_request(form, Sampler::Jitter, 40);
-    second.resume = run_render(first, r1);
-    const Film resumed = run_render(second, r2);
-    const Film straight = run_render(small_request(form, Sampler::Jitter, 40), r3);
+    const auto [resumed, straight] = resumed_and_straight(form, Sampler::Jitter);
     ASSERT_EQ(resumed.samples_per_pixel(), 40u);
     EXPECT_EQ(resumed.total_samples(), straight.total_samples());
     EXPECT_EQ(resumed.valid_counts(), straight.valid_counts());
@@ -67,12 +73,7 @@ TEST(Launches, ResumedRenderEqualsStraightRender) {
 TEST(Launches, SobolResumedRenderEqualsStraightRender) {
   for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
     SCOPED_TRACE(execution_form_name(form));
-    RenderRequest first = small_request(form, Sampler::Sobol, 12);
-    RenderRequest second = small_request(form, Sampler::Sobol, 40);
-    RenderReport r1, r2, r3;
-    second.resume = run_render(first, r1);
-    const Film resumed = run_render(second, r2);
-    const Film straight = run_render(small_request(form, Sampler::Sobol, 40), r3);
+    const auto [resumed, straight] = resumed_and_straight(form, Sampler::Sobol);
     ASSERT_EQ(resumed.samples_per_pixel(), 40u);
     EXPECT_EQ(resumed.valid_counts(), straight.valid_counts());
     expect_same_image(resumed.mean_rgb(), straight.mean_rgb());
