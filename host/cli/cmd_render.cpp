@@ -284,7 +284,7 @@ int run(const RenderOptions& o) {
     for (std::string& warning : precision_range_warnings(scene, request.precision)) warnings.push_back(std::move(warning));
     for (const std::string& warning : warnings) std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
   }
-  install_interrupt_handlers();
+  install_interrupt_handlers(writes ? InterruptNotes::Print : InterruptNotes::Silent);
   request.interrupt = &interrupt_flag();
   if (!writes) return run_as_worker(ranks, request);
   prepare_resume_and_checkpoints(o, scene, request);

@@ -11,6 +11,7 @@ namespace {
 // Only lock-free atomics may be touched from a signal handler.
 static_assert(std::atomic<bool>::is_always_lock_free, "the interrupt flag must be lock-free");
 std::atomic<bool> g_interrupted{false};
+std::atomic<bool> g_silent{false};
 
 void write_stderr(const char* text, size_t length) {
   const ssize_t ignored = ::write(STDERR_FILENO, text, length);
@@ -21,18 +22,19 @@ void write_stderr(const char* text, size_t length) {
 extern "C" void on_interrupt(int) {
   if (g_interrupted.exchange(true)) {
     static const char kNow[] = "\nclpt: interrupted again: exiting without writing\n";
-    write_stderr(kNow, sizeof kNow - 1);
+    if (!g_silent.load()) write_stderr(kNow, sizeof kNow - 1);
     ::_exit(static_cast<int>(ExitCode::Interrupted));
   }
   static const char kNote[] =
       "\nclpt: interrupted: finishing the current pass, then writing what is done "
       "(interrupt again to quit at once)\n";
-  write_stderr(kNote, sizeof kNote - 1);
+  if (!g_silent.load()) write_stderr(kNote, sizeof kNote - 1);
 }
 
 }  // namespace
 
-void install_interrupt_handlers() {
+void install_interrupt_handlers(InterruptNotes notes) {
+  g_silent.store(notes == InterruptNotes::Silent);
   struct sigaction action {};
   action.sa_handler = on_interrupt;
   sigemptyset(&action.sa_mask);

@@ -7,8 +7,13 @@
 
 namespace clpt {
 
+// How the handler speaks: a single process, and rank 0 of an MPI job, print the notes below; the
+// other ranks of a job stay silent, because the launcher forwards every rank's stderr into one
+// stream where two ranks' notes, written at the same instant, interleave mid-line.
+enum class InterruptNotes { Print, Silent };
+
 // Installs the handlers (sigaction, SA_RESTART) for SIGINT and SIGTERM. Idempotent.
-void install_interrupt_handlers();
+void install_interrupt_handlers(InterruptNotes notes = InterruptNotes::Print);
 
 // Set by the first SIGINT/SIGTERM after install_interrupt_handlers(); never cleared.
 const std::atomic<bool>& interrupt_flag();
