@@ -55,12 +55,27 @@ CLPT_INLINE void film_write_pass(__global GpuPixelPass* out, const PixelAccumula
 }
 
 /* Job results, as both execution forms leave them: job j of a launch is sample j / pixel_count of
- * pixel j % pixel_count. They are planar, n = pixel_count * samples_per_pass jobs per plane:
+ * slot j % pixel_count (job_pixel, job_sample below). They are planar, n = pixel_count * samples_per_pass jobs per plane:
  * results[j], results[n + j], results[2 n + j] hold its radiance, results[3 n + j] the bits of its
  * segment count. Planar, not four floats per job: four adjacent stores let the compiler pair a
  * path's colour channels into 2-wide vectors (SLP), which stops PoCL's vectoriser across
  * work-items; on GPUs, planes make the stores coalesce. */
 CLPT_INLINE uint job_count(const GpuRenderParams* params) { return params->pixel_count * params->samples_per_pass; }
+
+/* The pixel and the sample index job j traces. A launch has pixel_count slots of samples_per_pass
+ * samples each; job j is sample j / pixel_count of slot j % pixel_count. A uniform launch's slot s
+ * is pixel pixel_begin + s from sample sample_begin; an adaptive launch's (params->slotted) is
+ * slots[s], a pixel and its first sample, so one pixel may have several slots or none
+ * (render/adaptive_sampling.h). film_sum_jobs sums per slot; the host adds each slot to its pixel. */
+CLPT_INLINE uint job_pixel(const GpuRenderParams* params, __global const GpuSampleSlot* slots, uint job) {
+  const uint slot = job % params->pixel_count;
+  return params->slotted ? slots[slot].pixel : params->pixel_begin + slot;
+}
+
+CLPT_INLINE uint job_sample(const GpuRenderParams* params, __global const GpuSampleSlot* slots, uint job) {
+  const uint first = params->slotted ? slots[job % params->pixel_count].sample_begin : params->sample_begin;
+  return first + job / params->pixel_count;
+}
 
 CLPT_INLINE void job_result_store(__global float* results, uint job, uint jobs, Vec3 radiance, uint segments) {
   results[job] = (float)radiance.x;
@@ -100,8 +115,8 @@ CLPT_INLINE void film_add_sample(PixelAccumulator* total, RadianceSums* block, _
   total->segments += as_uint(results[3u * jobs + j]);
 }
 
-/* One work-item per pixel of the launch: its samples summed in sample order, so the sums do not
- * depend on which form traced them or in what order. */
+/* One work-item per slot of the launch (a pixel, or an adaptive pass's slot): its samples summed in
+ * sample order, so the sums do not depend on which form traced them or in what order. */
 __kernel void film_sum_jobs(const GpuRenderParams params, __global const float* results,
                             __global GpuPixelPass* pass) {
   const uint local_pixel = (uint)get_global_id(0);

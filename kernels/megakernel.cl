@@ -1,10 +1,10 @@
 /* megakernel.cl: the megakernel execution form.
  *
- * One work-item per path (job) of the launch: job j is sample sample_begin + j / pixel_count of
- * pixel pixel_begin + j % pixel_count. It runs the stages of path.cl in a loop, one segment per
- * iteration, until the path ends, and leaves its result for film_sum_jobs (film.cl). Reads: the
- * geometry (spheres; the hierarchy and triangles, bvh.cl) and GpuRenderParams, and the light
- * buffer (nee). Writes: results.
+ * One work-item per path (job) of the launch: job j traces sample job_sample(j) of pixel
+ * job_pixel(j) (film.cl: a pixel range, or an adaptive pass's slots). It runs the stages of
+ * path.cl in a loop, one segment per iteration, until the path ends, and leaves its result for
+ * film_sum_jobs (film.cl). Reads: the geometry (spheres; the hierarchy and triangles, bvh.cl),
+ * GpuRenderParams, the light buffer (nee) and the slots (adaptive passes). Writes: results.
  *
  * Two loops, chosen by the host (kernel_options.cpp, CLPT_LOCKSTEP_GROUP):
  *  - per path (GPUs): each work-item loops until its own path ends; the GPU's SIMT hardware masks
@@ -32,7 +32,8 @@
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading,
-                           const GpuRenderParams params, __global float* results) {
+                           const GpuRenderParams params, __global const GpuSampleSlot* slots,
+                           __global float* results) {
   __local uint alive_of[CLPT_LOCKSTEP_GROUP];
   __local uint any_alive;
   const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
@@ -41,8 +42,7 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   const uint lid = (uint)get_local_id(0);
   const bool active = job < jobs;
   const uint j = active ? job : 0u;
-  PathState path = path_begin(&params, params.pixel_begin + j % params.pixel_count,
-                              params.sample_begin + j / params.pixel_count);
+  PathState path = path_begin(&params, job_pixel(&params, slots, j), job_sample(&params, slots, j));
   path.alive = active ? 1 : 0;
   for (;;) {
     PathState next = path;
@@ -65,12 +65,12 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading,
-                           const GpuRenderParams params, __global float* results) {
+                           const GpuRenderParams params, __global const GpuSampleSlot* slots,
+                           __global float* results) {
   const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const uint job = (uint)get_global_id(0);
   if (job >= job_count(&params)) return;
-  PathState path = path_begin(&params, params.pixel_begin + job % params.pixel_count,
-                              params.sample_begin + job / params.pixel_count);
+  PathState path = path_begin(&params, job_pixel(&params, slots, job), job_sample(&params, slots, job));
   while (path.alive) {
     path_shade(&path, path_intersect(&path, &scene, &params), &scene, &params);
   }

@@ -130,7 +130,7 @@ typedef struct GpuCamera {
   float pad2;
 } GpuCamera;
 
-/* Everything one pass needs besides the sphere and light buffers: 112 bytes, passed by value. */
+/* Everything one pass needs besides the sphere and light buffers: 116 bytes, passed by value. */
 typedef struct GpuRenderParams {
   GpuCamera camera;
   clpt_u32 width;            /* pixels */
@@ -149,7 +149,16 @@ typedef struct GpuRenderParams {
   clpt_u32 rr_from;          /* Russian roulette at scattering events from this bounce on, or CLPT_RR_NEVER */
   clpt_u32 light_count;      /* entries in the light buffer (next-event estimation) */
   clpt_u32 bvh_node_count;   /* entries in the node buffer; 0: no hierarchy (spheres in a loop) */
+  clpt_u32 slotted;          /* 0: the launch's slot s is pixel pixel_begin + s from sample_begin; 1: it is
+                                the launch's GpuSampleSlot s (an adaptive pass, film.cl) */
 } GpuRenderParams;
+
+/* One slot of an adaptive pass (render/adaptive_sampling.h): a pixel and the index of the first of
+ * its samples_per_pass samples in this slot: 8 bytes. */
+typedef struct GpuSampleSlot {
+  clpt_u32 pixel;        /* row-major, row 0 at the top */
+  clpt_u32 sample_begin; /* half 1's samples: from 2^31 (CLPT_SAMPLE_STREAM_BIT) */
+} GpuSampleSlot;
 
 /* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
  * host adds them into double-precision sums, so no float sum ever spans more than one pass. */
@@ -208,6 +217,9 @@ typedef struct GpuPixelPass {
   X(GpuRenderParams, rr_from)                                                                     \
   X(GpuRenderParams, light_count)                                                                 \
   X(GpuRenderParams, bvh_node_count)                                                              \
+  X(GpuRenderParams, slotted)                                                                     \
+  X(GpuSampleSlot, pixel)                                                                         \
+  X(GpuSampleSlot, sample_begin)                                                                  \
   X(GpuLight, cap_axis)                                                                           \
   X(GpuLight, sphere)                                                                             \
   X(GpuLight, one_minus_cos_cap)                                                                  \
@@ -217,7 +229,7 @@ typedef struct GpuPixelPass {
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuPixelPass)
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuPixelPass)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the
  * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
@@ -239,7 +251,8 @@ CLPT_CHECK_SIZE(GpuTriangleShading, 80)
 CLPT_CHECK_SIZE(GpuSphere, 96)
 CLPT_CHECK_SIZE(GpuLight, 32)
 CLPT_CHECK_SIZE(GpuCamera, 48)
-CLPT_CHECK_SIZE(GpuRenderParams, 112)
+CLPT_CHECK_SIZE(GpuRenderParams, 116)
+CLPT_CHECK_SIZE(GpuSampleSlot, 8)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
 #undef CLPT_CHECK_SIZE
 

@@ -10,8 +10,8 @@
  *                 set (atomic appends): shading and compaction in one pass
  *   film_sum_jobs every pixel -> GpuPixelPass, summing its samples in sample order (film.cl)
  * The physics is path.cl's: these kernels only load a PathState, call the same stage function
- * as the megakernel, and store it. Job j of a pass is sample (sample_begin + j / pixel_count) of
- * pixel (pixel_begin + j % pixel_count); its result depends on nothing else, so the image equals
+ * as the megakernel, and store it. Job j of a pass is sample job_sample(j) of pixel job_pixel(j)
+ * (film.cl); its result depends on nothing else, so the image equals
  * the megakernel's up to float rounding whatever the slot order or the number of paths in flight. */
 #include "types.h"
 #include "path_state.h"
@@ -29,12 +29,13 @@
 #define CLPT_TO_NAME(type, name, bytes, doc) , to_##name
 #define CLPT_TO_ARGS CLPT_PATH_STATE_FIELDS(CLPT_TO_NAME)
 
-CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params CLPT_STATE_PARAMS) {
+CLPT_INLINE PathState path_load(uint slot, const GpuRenderParams* params,
+                                __global const GpuSampleSlot* sample_slots CLPT_STATE_PARAMS) {
   PathState p;
   CLPT_PATH_LOAD_FIELDS
   const uint j = job[slot];
-  p.pixel = params->pixel_begin + j % params->pixel_count;
-  p.sample = params->sample_begin + j / params->pixel_count;
+  p.pixel = job_pixel(params, sample_slots, j);
+  p.sample = job_sample(params, sample_slots, j);
   p.alive = 1;  /* only living paths are stored */
   return p;
 }
@@ -45,13 +46,13 @@ CLPT_INLINE void path_store(uint slot, uint job_index, const PathState* p CLPT_S
 }
 
 /* Starts jobs job_begin + i in slots slot_begin + i, for i < count. */
-__kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint slot_begin, uint count
-                              CLPT_STATE_PARAMS) {
+__kernel void wf_generate(const GpuRenderParams params, __global const GpuSampleSlot* sample_slots, uint job_begin,
+                          uint slot_begin, uint count CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const uint job_index = job_begin + i;
-  const PathState p = path_begin(&params, params.pixel_begin + job_index % params.pixel_count,
-                                 params.sample_begin + job_index / params.pixel_count);
+  const PathState p = path_begin(&params, job_pixel(&params, sample_slots, job_index),
+                                 job_sample(&params, sample_slots, job_index));
   path_store(slot_begin + i, job_index, &p CLPT_STATE_ARGS);
 }
 
@@ -59,11 +60,11 @@ __kernel void wf_generate(const GpuRenderParams params, uint job_begin, uint slo
 __kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
-                           uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
+                           __global const GpuSampleSlot* sample_slots, uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
   const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
-  const PathState p = path_load(i, &params CLPT_STATE_ARGS);
+  const PathState p = path_load(i, &params, sample_slots CLPT_STATE_ARGS);
   const Hit hit = path_intersect(&p, &scene, &params);
   hit_t[i] = hit.t;
   hit_sphere[i] = hit.sphere;
@@ -88,7 +89,8 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, __global const Gpu
 #endif
 __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
-                       __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params, uint count, __global float* results,
+                       __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
+                       __global const GpuSampleSlot* sample_slots, uint count, __global float* results,
                        __global volatile uint* survivors CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
   __local uint rank_of[CLPT_WAVEFRONT_GROUP]; /* survives (0/1), then the survivor's rank */
   __local uint group_base;
@@ -96,7 +98,7 @@ __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLigh
   const uint lid = (uint)get_local_id(0);
   const bool active = i < count;
   const uint slot = i;
-  PathState p = path_load(slot, &params CLPT_STATE_ARGS);
+  PathState p = path_load(slot, &params, sample_slots CLPT_STATE_ARGS);
   Hit hit;
   hit.t = hit_t[slot];
   hit.sphere = active ? hit_sphere[slot] : -1;

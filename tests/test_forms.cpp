@@ -24,6 +24,8 @@ struct Variant {
   SceneLoops scene_loops = SceneLoops::Auto;
   Sampler sampler = Sampler::Jitter;
   bool meshes = false;  // the mesh scene (with_meshes) instead of the book scene
+  bool adaptive = false;
+  uint64_t spp = 32;
 };
 
 // The book scene with triangles and a hierarchy: its left ball replaced by a tessellated sphere
@@ -58,6 +60,8 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     if (!v.estimator.empty()) request.scene.settings.estimator = v.estimator;
     request.scene.settings.sampler = v.sampler;
     if (v.meshes) with_meshes(request.scene);
+    request.adaptive = v.adaptive;
+    request.scene.settings.spp = int(v.spp);
   });
 }
 
@@ -118,6 +122,21 @@ TEST_P(FormsAgree, SobolMegakernelEqualsWavefront) {
     SCOPED_TRACE(estimator);
     Variant mega{ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::Auto, estimator};
     mega.sampler = Sampler::Sobol;
+    Variant wave = mega;
+    wave.form = ExecutionForm::Wavefront;
+    expect_same_image(render_variant(GetParam(), mega), render_variant(GetParam(), wave));
+  }
+}
+
+// Adaptive sampling's passes (slots of one pixel and its first sample each, kernels/film.cl) in
+// both forms: 64 spp, so that rounds after the uniform start hand out slots.
+TEST_P(FormsAgree, AdaptiveMegakernelEqualsWavefront) {
+  for (Sampler sampler : {Sampler::Jitter, Sampler::Sobol}) {
+    SCOPED_TRACE(sampler_name(sampler));
+    Variant mega{ExecutionForm::Megakernel, 0, false, 0, MegakernelLoop::Auto, "nee"};
+    mega.sampler = sampler;
+    mega.adaptive = true;
+    mega.spp = 64;
     Variant wave = mega;
     wave.form = ExecutionForm::Wavefront;
     expect_same_image(render_variant(GetParam(), mega), render_variant(GetParam(), wave));

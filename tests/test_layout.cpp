@@ -36,7 +36,8 @@ TEST(StructLayout, HostMatchesDevice) {
   // The sizes the comments in types.h promise.
   EXPECT_EQ(sizeof(GpuSphere), 96u);
   EXPECT_EQ(sizeof(GpuCamera), 48u);
-  EXPECT_EQ(sizeof(GpuRenderParams), 112u);
+  EXPECT_EQ(sizeof(GpuRenderParams), 116u);
+  EXPECT_EQ(sizeof(GpuSampleSlot), 8u);
   EXPECT_EQ(sizeof(GpuLight), 32u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);
 }
@@ -66,6 +67,8 @@ TEST(StructLayout, PathStateBuffersMatchTheHost) {
     params.pixel_count = 1;
     kernel.set_arg(0, sizes);
     kernel.set_arg(1, params);
+    const Buffer sample_slots = upload(std::vector<unsigned char>(sizeof(GpuSampleSlot), 0));  // unread: not slotted
+    kernel.set_arg(2, sample_slots);
     // Two slots per buffer: slot 0 holds a distinct non-zero pattern, slot 1 zeros.
     std::vector<Buffer> buffers;
     std::vector<std::vector<unsigned char>> slot0;
@@ -76,7 +79,7 @@ TEST(StructLayout, PathStateBuffersMatchTheHost) {
       bytes[host_bytes[b] - 1] = 0x3f;
       slot0.emplace_back(bytes.begin(), bytes.begin() + long(host_bytes[b]));
       buffers.push_back(upload(bytes));
-      kernel.set_arg(cl_uint(2 + b), buffers.back());
+      kernel.set_arg(cl_uint(3 + b), buffers.back());
     }
     test_device().launch(kernel, 1, 1, "probe_path_state");
     const auto device_bytes = download<cl_uint>(sizes, host_bytes.size());

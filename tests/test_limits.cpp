@@ -193,7 +193,9 @@ TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
   film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
   film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
   save_checkpoint(path_, scene, film);
-  const size_t pixels = 12, half_film_bytes = 8 + pixels * 4 * sizeof(double);
+  // Version 2's half-film and version 3's adaptive flag, half-1 sums of squares and sample counts.
+  const size_t pixels = 12, half_film_bytes = 8 + pixels * 4 * sizeof(double) + 1 + pixels * 3 * sizeof(double) +
+                                              pixels * sizeof(uint32_t);
   std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - half_film_bytes);
   {
     std::fstream f(path_, std::ios::in | std::ios::out | std::ios::binary);
@@ -207,6 +209,50 @@ TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
   EXPECT_EQ(back.half_samples_per_pixel(0), 6u);
   EXPECT_EQ(back.half_samples_per_pixel(1), 0u);
   EXPECT_EQ(back.next_half(), 1);
+}
+
+TEST_F(Checkpoint, ReadsVersion2FilesAsNonAdaptive) {
+  const Scene scene = small_scene();
+  Film film(4, 3);
+  GpuPixelPass p{};
+  p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 3;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  save_checkpoint(path_, scene, film);
+  const size_t pixels = 12, version3_bytes = 1 + pixels * 3 * sizeof(double) + pixels * sizeof(uint32_t);
+  std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - version3_bytes);
+  {
+    std::fstream f(path_, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(8);
+    const uint32_t version = 2;
+    f.write(reinterpret_cast<const char*>(&version), sizeof version);
+  }
+  const Film back = load_checkpoint(path_, scene);
+  EXPECT_EQ(back.half_samples_per_pixel(1), 3u);
+  EXPECT_EQ(back.half1_samples(), std::vector<uint32_t>(12, 3u));
+  EXPECT_EQ(back.half1_sums(), film.half1_sums());
+  EXPECT_NE(error_of([&] { load_checkpoint(path_, scene, true); }).second.find("adaptively"), std::string::npos);
+}
+
+TEST_F(Checkpoint, AdaptiveFilmsKeepEveryPixelsHalfOneSamples) {
+  const Scene scene = small_scene();
+  Film film(4, 3);
+  GpuPixelPass p{};
+  p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 2;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 2);
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 2);
+  // An adaptive pass: pixel 5 takes 10 of the 12 slots, pixels 0 and 11 one each.
+  std::vector<GpuSampleSlot> slots(12, GpuSampleSlot{5, 0});
+  slots[0].pixel = 0, slots[11].pixel = 11;
+  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 2, &slots);
+  save_checkpoint(path_, scene, film, true);
+  const Film back = load_checkpoint(path_, scene, true);
+  EXPECT_EQ(back.half1_samples(), film.half1_samples());
+  EXPECT_EQ(back.half1_samples()[5], 2u + 20u);
+  EXPECT_EQ(back.half1_sums_of_squares(), film.half1_sums_of_squares());
+  EXPECT_EQ(back.half_samples_per_pixel(1), 4u);
+  EXPECT_EQ(back.samples_per_pixel(), film.samples_per_pixel());
+  EXPECT_NE(error_of([&] { load_checkpoint(path_, scene, false); }).second.find("--adaptive"), std::string::npos);
 }
 
 TEST_F(Checkpoint, MismatchesNameTheField) {

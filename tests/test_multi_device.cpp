@@ -125,6 +125,40 @@ TEST(MultiDeviceIdentical, TargetErrorStopsAtTheSameSamplesOnTwoDevices) {
   expect_same_image(one.mean_rgb(), two.mean_rgb());
 }
 
+// Adaptive sampling sizes its passes by the image alone (render/adaptive_sampling.h): one device
+// and two give the same passes and so the same film, bit for bit, slots and all; with a target
+// error too (jitter: every round's slots hold one sample, the table split at any slot).
+TEST(MultiDeviceIdentical, AdaptiveSamplingGivesTheFilmOfOneDevice) {
+  require_two_devices();
+  for (bool target : {false, true}) {
+    SCOPED_TRACE(target ? "target error 0.1" : "96 spp");
+    auto render = [&](const std::string& device, RenderReport& report) {
+      RenderRequest request = one_pass_request(device, ExecutionForm::Megakernel);
+      request.scene.settings.estimator = "nee";
+      request.scene.settings.sampler = Sampler::Jitter;
+      request.scene.settings.spp = 96;
+      request.adaptive = true;
+      if (target) {
+        request.target_error = 0.1;
+        request.spp_given = false;
+      }
+      return run_render(request, report);
+    };
+    RenderReport one_report, two_report;
+    const Film one = render("0", one_report);
+    const Film two = render("all", two_report);
+    ASSERT_EQ(two_report.devices.size(), 2u);
+    EXPECT_GT(two_report.devices[0].paths, 0u);
+    EXPECT_GT(two_report.devices[1].paths, 0u);
+    if (target) {
+      EXPECT_EQ(two_report.stop, StopReason::TargetError);
+    }
+    expect_equal_films(one, two);
+    EXPECT_EQ(one.half1_samples(), two.half1_samples());
+    EXPECT_EQ(one.half1_sums(), two.half1_sums());
+  }
+}
+
 TEST(MultiDeviceIdentical, FailedLaunchGoesToTheOtherDevice) {
   require_two_devices();
   RenderReport straight_report, report;

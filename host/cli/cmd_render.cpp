@@ -44,6 +44,7 @@ struct RenderOptions {
   bool progress = false;
   bool explain = false;
   bool generic = false;
+  bool adaptive = false;  // --adaptive
   bool no_cache = false;
   std::string form = "auto";
   std::string megakernel_loop = "auto";
@@ -113,6 +114,7 @@ void write_outputs(const RenderOptions& o, const std::string& path, const Film& 
     info.rr_from = scene.settings.rr_from;
     info.estimator = scene.settings.estimator;
     info.sampler = sampler_name(scene.settings.sampler);
+    info.adaptive = o.adaptive;
     info.max_bounces = uint64_t(scene.settings.max_bounces);
     info.dropped_samples = report.dropped;
     info.interrupted = report.interrupted;
@@ -193,7 +195,7 @@ void print_summary(const Scene& scene, const RenderReport& r) {
 // --checkpoint: a callback saving the film between passes. Both before any device work.
 void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, RenderRequest& request) {
   if (!o.resume.empty()) {
-    request.resume = load_checkpoint(o.resume, scene);
+    request.resume = load_checkpoint(o.resume, scene, o.adaptive);
     const uint64_t done = request.resume->samples_per_pixel();
     if (request.spp_given && done > uint64_t(scene.settings.spp))
       throw Error(ExitCode::Usage, "--spp " + std::to_string(scene.settings.spp) + ": the checkpoint " +
@@ -202,7 +204,9 @@ void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, 
   }
   if (o.checkpoint.empty()) return;
   request.checkpoint_every_s = o.checkpoint_every_s;
-  request.checkpoint = [path = o.checkpoint, &scene](const Film& film) { save_checkpoint(path, scene, film); };
+  request.checkpoint = [path = o.checkpoint, &scene, adaptive = o.adaptive](const Film& film) {
+    save_checkpoint(path, scene, film, adaptive);
+  };
 }
 
 // After the passes: the final checkpoint, then the image of every finished pass. Returns the exit
@@ -216,7 +220,7 @@ int finish_outputs(const RenderOptions& o, const std::string& out, const Film& f
     return static_cast<int>(ExitCode::Interrupted);
   }
   if (!o.checkpoint.empty()) {
-    save_checkpoint(o.checkpoint, scene, film);
+    save_checkpoint(o.checkpoint, scene, film, o.adaptive);
     if (!o.quiet) std::printf("wrote checkpoint %s (%llu spp)\n", o.checkpoint.c_str(), spp);
   }
   write_outputs(o, out, film, scene, report);
@@ -260,6 +264,7 @@ int run(const RenderOptions& o) {
   request.time_limit_s = o.time_s.value_or(0.0);
   request.target_error = o.target_error.value_or(0.0);
   request.spp_given = o.spp.has_value() || (!o.time_s && !o.target_error);
+  request.adaptive = o.adaptive;
   request.generic_kernel = o.generic;
   request.precision = precision;
   if (o.intersection) request.intersection = parse_intersection(*o.intersection);
@@ -310,6 +315,9 @@ std::function<int()> add_render_command(CLI::App& app) {
                   "Stop when clpt's estimate of the image's relative RMSE falls to this (e.g. 0.05 for 5%); "
                   "with --spp and --time, whichever comes first")
       ->check(CLI::Range(1e-4, 1.0));
+  cmd->add_flag("--adaptive", o->adaptive,
+                "Adaptive sampling: after 16 spp, half the samples go where the estimated error is largest "
+                "(the other half stays uniform; the image stays unbiased)");
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's)");
   cmd->add_option("--device", o->device, "Device: index from `clpt devices`, cpu, gpu, cpu:N, gpu:N, a name substring; "
                   "several: all, or a comma list (0,1)");

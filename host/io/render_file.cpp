@@ -28,6 +28,7 @@ constexpr const char* kInterrupted = "clpt:interrupted";
 constexpr const char* kErrorEstimate = "clpt:error_estimate";
 constexpr const char* kTargetError = "clpt:target_error";
 constexpr const char* kStop = "clpt:stop";
+constexpr const char* kAdaptive = "clpt:adaptive";
 
 std::string text(const ImageMetadata& m, const char* key) {
   const auto it = m.find(key);
@@ -102,6 +103,7 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   put(kMaxBounces, info.max_bounces);
   put(kDroppedSamples, info.dropped_samples);
   if (info.interrupted) m[kInterrupted] = "1";
+  if (info.adaptive) m[kAdaptive] = "1";
   if (info.error_estimate) m[kErrorEstimate] = real_text(*info.error_estimate);
   if (info.target_error) m[kTargetError] = real_text(*info.target_error);
   if (!info.stop.empty()) m[kStop] = info.stop;
@@ -123,6 +125,7 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.max_bounces = number<uint64_t>(m, kMaxBounces);
   info.dropped_samples = number<uint64_t>(m, kDroppedSamples);
   info.interrupted = text(m, kInterrupted) == "1";
+  info.adaptive = text(m, kAdaptive) == "1";
   info.error_estimate = real(m, kErrorEstimate);
   info.target_error = real(m, kTargetError);
   info.stop = text(m, kStop);

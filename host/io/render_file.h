@@ -30,7 +30,8 @@ struct RenderFileInfo {
   std::string precision;                // clpt:precision, fast | robust | double
   std::optional<int64_t> rr_from;       // clpt:rr_from, -1 for no Russian roulette
   std::string estimator;                // clpt:estimator, book | nee
-  std::string sampler;                  // clpt:sampler, jitter | grid
+  std::string sampler;                  // clpt:sampler, jitter | grid | sobol
+  bool adaptive = false;                // clpt:adaptive = 1: adaptive sampling (render/adaptive_sampling.h)
   std::optional<uint64_t> max_bounces;  // clpt:max_bounces
   std::optional<uint64_t> dropped_samples;  // clpt:dropped_samples, NaN/Inf samples left out
   bool interrupted = false;             // clpt:interrupted = 1: spp counts the finished passes only

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 
 #include "util/atomic_file.h"
 #include "render/limits.h"
@@ -110,7 +111,7 @@ void check_matches(const std::string& path, const Header& stored, const Header& 
 
 }  // namespace
 
-void save_checkpoint(const std::string& path, const Scene& scene, const Film& film) {
+void save_checkpoint(const std::string& path, const Scene& scene, const Film& film, bool adaptive) {
   const std::string tmp = temporary_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -122,6 +123,10 @@ void save_checkpoint(const std::string& path, const Scene& scene, const Film& fi
     put(out, film.half_samples_per_pixel(1));
     put_doubles(out, film.half1_sums());
     put_doubles(out, film.half1_valid_counts());
+    put(out, uint8_t(adaptive));
+    put_doubles(out, film.half1_sums_of_squares());
+    out.write(reinterpret_cast<const char*>(film.half1_samples().data()),
+              std::streamsize(film.half1_samples().size() * sizeof(uint32_t)));
     if (!out.flush()) {
       std::remove(tmp.c_str());
       throw Error(ExitCode::OutputError, path + ": cannot write checkpoint: write failed");
@@ -130,7 +135,7 @@ void save_checkpoint(const std::string& path, const Scene& scene, const Film& fi
   commit_temporary(tmp, path);
 }
 
-Film load_checkpoint(const std::string& path, const Scene& scene) {
+Film load_checkpoint(const std::string& path, const Scene& scene, bool adaptive) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, std::string("cannot open checkpoint: ") + std::strerror(errno));
   Header stored;
@@ -142,14 +147,25 @@ Film load_checkpoint(const std::string& path, const Scene& scene) {
   std::vector<double> sum_sq = get_doubles(in, pixels * 3);
   std::vector<double> valid = get_doubles(in, pixels);
   uint64_t half1_spp = 0;
-  std::vector<double> half1_sum, half1_valid;
+  std::vector<double> half1_sum, half1_valid, half1_sum_sq;
+  std::vector<uint32_t> half1_samples;
+  uint8_t stored_adaptive = 0;
   if (stored.version >= 2) {
     get(in, half1_spp);
     half1_sum = get_doubles(in, pixels * 3);
     half1_valid = get_doubles(in, pixels);
   }
+  if (stored.version >= 3) {
+    get(in, stored_adaptive);
+    half1_sum_sq = get_doubles(in, pixels * 3);
+    half1_samples.resize(pixels);
+    in.read(reinterpret_cast<char*>(half1_samples.data()), std::streamsize(pixels * sizeof(uint32_t)));
+  }
   if (!in || in.peek() != std::char_traits<char>::eof())
     fail(path, "the checkpoint is truncated or has trailing bytes");
+  if (bool(stored_adaptive) != adaptive)
+    fail(path, std::string("the checkpoint's render ") + (stored_adaptive ? "samples" : "does not sample") +
+                   " adaptively and this one " + (adaptive ? "does" : "does not") + " (--adaptive)");
   if (stored.spp > kMaxSpp) fail(path, "the checkpoint's spp " + std::to_string(stored.spp) + " is out of range");
   const Film::Totals totals{stored.spp, stored.total_samples, stored.total_segments, stored.dropped};
   Film film = Film::restore(int(stored.width), int(stored.height), std::move(sum), std::move(sum_sq),
@@ -158,7 +174,12 @@ Film load_checkpoint(const std::string& path, const Scene& scene) {
   if (half1_spp > stored.spp)
     fail(path, "the checkpoint's half-film spp " + std::to_string(half1_spp) + " exceeds its spp " +
                    std::to_string(stored.spp));
-  film.restore_halves(std::move(half1_sum), std::move(half1_valid), half1_spp);
+  try {
+    film.restore_halves(std::move(half1_sum), std::move(half1_valid), half1_spp, std::move(half1_sum_sq),
+                        std::move(half1_samples));
+  } catch (const std::invalid_argument&) {
+    fail(path, "the checkpoint's half-film does not add up to its samples per pixel");
+  }
   return film;
 }
 

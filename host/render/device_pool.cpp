@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <map>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -117,11 +118,26 @@ void DevicePool::build(Member& m, const DevicePlan& plan, bool use_kernel_cache,
   }
 }
 
-void DevicePool::run_pass(const GpuRenderParams& params, Film& film) {
-  run_pass_part(params, PixelRange{0, params.pixel_count},
-                [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
-                  film.add_pass(result, pixel_begin, params.samples_per_pass);
-                });
+void DevicePool::run_pass(const GpuRenderParams& params, Film& film, const std::vector<GpuSampleSlot>* slots) {
+  const PixelRange all{0, params.pixel_count};
+  if (params.slotted) {
+    // An adaptive pass may give one pixel several slots, which two devices' ranges can split: the
+    // film takes the whole pass in slot order, so that the double sums of such a pixel are added in
+    // the same order whatever the split (a pixel of a uniform pass gets one entry and no order).
+    std::vector<GpuPixelPass> pass(params.pixel_count);
+    run_pass_part(
+        params, all,
+        [&](const std::vector<GpuPixelPass>& result, uint32_t slot_begin) {
+          std::copy(result.begin(), result.end(), pass.begin() + slot_begin);
+        },
+        slots);
+    film.add_pass(pass, 0, params.samples_per_pass, slots);
+    return;
+  }
+  const int half = int(params.sample_begin >> CLPT_SAMPLE_STREAM_BIT);
+  run_pass_part(params, all, [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
+    film.add_pass(result, pixel_begin, params.samples_per_pass, nullptr, half);
+  });
 }
 
 bool DevicePool::every_device_failed() const {
@@ -129,7 +145,11 @@ bool DevicePool::every_device_failed() const {
   return working_count() == 0;
 }
 
-void DevicePool::run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink) {
+void DevicePool::run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink,
+                               const std::vector<GpuSampleSlot>* slots) {
+  if (params.slotted && (!slots || pixels.begin + pixels.count > slots->size()))
+    throw std::logic_error("DevicePool: an adaptive pass without its slots");
+  const GpuSampleSlot* slot_data = params.slotted ? slots->data() : nullptr;
   PassState pass(pixels);
   std::vector<Member*> working;
   for (const auto& m : members_)
@@ -150,8 +170,8 @@ void DevicePool::run_pass_part(const GpuRenderParams& params, PixelRange pixels,
   // The first working device runs on this thread: a single-device render starts no thread.
   std::vector<std::thread> threads;
   for (size_t i = 1; i < working.size(); ++i)
-    threads.emplace_back([&, i] { work(*working[i], params, sink, pass, first[i]); });
-  if (!working.empty()) work(*working[0], params, sink, pass, first[0]);
+    threads.emplace_back([&, i] { work(*working[i], params, slot_data, sink, pass, first[i]); });
+  if (!working.empty()) work(*working[0], params, slot_data, sink, pass, first[0]);
   for (std::thread& t : threads) t.join();
   if (fatal_) std::rethrow_exception(fatal_);
   if (!pass.queue.empty()) throw_every_device_failed();
@@ -163,7 +183,8 @@ void DevicePool::run_pass_part(const GpuRenderParams& params, PixelRange pixels,
 
 // One device's loop within a pass: take a range, trace it, add it to the film; until the queue
 // is empty and no range is in flight (a range in flight may still come back from a failure).
-void DevicePool::work(Member& m, const GpuRenderParams& params, const PassSink& sink, PassState& pass, Taken first) {
+void DevicePool::work(Member& m, const GpuRenderParams& params, const GpuSampleSlot* slots, const PassSink& sink,
+                      PassState& pass, Taken first) {
   try {
     for (;;) {
       Taken taken = std::exchange(first, Taken{});
@@ -185,7 +206,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, const PassSink& 
           FaultPlan::throw_injected(CL_OUT_OF_RESOURCES, "clEnqueueNDRangeKernel", m.ctx->where() + " (render_pass)");
         if (const uint64_t ms = faults_.launch_delay_ms(m.position))
           std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-        result = m.renderer->render_pass(p);
+        result = m.renderer->render_pass(p, slots ? slots + range.begin : nullptr);
       } catch (const Error& e) {
         std::lock_guard<std::mutex> lock(mutex_);
         --pass.in_flight;

@@ -58,14 +58,17 @@ class DevicePool {
   // `film`; every working device pulls ranges until the pass is done. Blocking. Throws as the
   // constructor does when every device has failed before the pass was complete (the film then
   // holds part of the pass and must not be used); rethrows any other exception of a device.
-  void run_pass(const GpuRenderParams& params, Film& film);
+  // An adaptive pass (params.slotted) passes its `slots`, params.pixel_count of them, which the
+  // devices take in ranges as they take pixels of a uniform pass.
+  void run_pass(const GpuRenderParams& params, Film& film, const std::vector<GpuSampleSlot>* slots = nullptr);
 
   // Receives each traced range of a pass: its pixel results and its first pixel. Called under the
   // pool's lock, one range at a time.
   using PassSink = std::function<void(const std::vector<GpuPixelPass>& result, uint32_t pixel_begin)>;
   // As run_pass, over the pixels `pixels` of the pass only (an MPI rank's part, rank_pass.h), each
   // traced range handed to `sink` instead of a film.
-  void run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink);
+  void run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink,
+                     const std::vector<GpuSampleSlot>* slots = nullptr);
   // True once every device has been retired (run_pass and run_pass_part then throw).
   bool every_device_failed() const;
 
@@ -96,7 +99,8 @@ class DevicePool {
 
   void build(Member& member, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene);
   // `first`: the range run_pass handed the member before its thread started.
-  void work(Member& member, const GpuRenderParams& params, const PassSink& sink, PassState& pass, Taken first);
+  void work(Member& member, const GpuRenderParams& params, const GpuSampleSlot* slots, const PassSink& sink,
+            PassState& pass, Taken first);
   // Takes member's next range from a non-empty queue; called under mutex_.
   Taken take_range(Member& member, PassState& pass, uint32_t samples);
   // Pixels of member's next range; called under mutex_.

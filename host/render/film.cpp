@@ -1,6 +1,7 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -14,42 +15,60 @@ Film::Film(int width, int height)
       sum_sq_(size_t(width) * height * 3, 0.0),
       valid_(size_t(width) * height, 0.0),
       half1_sum_(size_t(width) * height * 3, 0.0),
-      half1_valid_(size_t(width) * height, 0.0) {}
+      half1_sum_sq_(size_t(width) * height * 3, 0.0),
+      half1_valid_(size_t(width) * height, 0.0),
+      half1_samples_(size_t(width) * height, 0) {}
 
-void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples) {
-  if (pending_pixels_ == 0) pending_half_ = next_half();  // a new pass: all of it goes to one half
+void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples,
+                    const std::vector<GpuSampleSlot>* slots, int half) {
+  // A new pass: all of it goes to one half.
+  if (pending_pixels_ == 0) pending_half_ = slots ? 1 : half < 0 ? next_half() : (half & 1);
+  if (slots && pending_half_ != 1) throw std::logic_error("Film::add_pass: an adaptive launch inside a uniform pass");
+  if (slots && pixel_begin + pass.size() > slots->size())
+    throw std::logic_error("Film::add_pass: a launch past the adaptive pass's slots");
   const bool to_half1 = pending_half_ == 1;
   for (size_t i = 0; i < pass.size(); ++i) {
     const GpuPixelPass& p = pass[i];
-    const size_t pixel = pixel_begin + i;
+    const size_t pixel = slots ? (*slots)[pixel_begin + i].pixel : pixel_begin + i;
+    if (pixel >= pixel_count()) throw std::logic_error("Film::add_pass: a slot's pixel is outside the image");
     for (int c = 0; c < 3; ++c) {
       sum_[pixel * 3 + c] += p.sum[c];
       sum_sq_[pixel * 3 + c] += p.sum_sq[c];
     }
     valid_[pixel] += p.valid_samples;
     if (to_half1) {
-      for (int c = 0; c < 3; ++c) half1_sum_[pixel * 3 + c] += p.sum[c];
+      for (int c = 0; c < 3; ++c) {
+        half1_sum_[pixel * 3 + c] += p.sum[c];
+        half1_sum_sq_[pixel * 3 + c] += p.sum_sq[c];
+      }
       half1_valid_[pixel] += p.valid_samples;
+      half1_samples_[pixel] += samples;
     }
     total_segments_ += p.segments;
     dropped_samples_ += samples - static_cast<uint64_t>(p.valid_samples);
   }
   total_samples_ += uint64_t(samples) * pass.size();
-  track_pass_coverage(pass.size(), samples);
+  if (to_half1) half1_total_ += uint64_t(samples) * pass.size();
+  track_pass_coverage(pass.size(), samples, slots ? slots->size() : pixel_count());
 }
 
-void Film::track_pass_coverage(size_t pixels, uint32_t samples) {
+void Film::track_pass_coverage(size_t pixels, uint32_t samples, size_t pass_slots) {
   if (pending_pixels_ > 0 && samples != pending_samples_)
     throw std::logic_error("Film::add_pass: a launch with " + std::to_string(samples) +
                            " samples inside a pass of " + std::to_string(pending_samples_));
   pending_samples_ = samples;
   pending_pixels_ += pixels;
-  if (pending_pixels_ > pixel_count()) throw std::logic_error("Film::add_pass: pass covers too many pixels");
-  if (pending_pixels_ == pixel_count()) {
-    samples_per_pixel_ += samples;
-    half_spp_[pending_half_] += samples;
+  if (pending_pixels_ > pass_slots) throw std::logic_error("Film::add_pass: pass covers too many pixels");
+  if (pending_pixels_ == pass_slots) {
+    if (pending_half_ == 0) half_spp_[0] += samples;
+    update_half1_spp();
     pending_pixels_ = 0;
   }
+}
+
+void Film::update_half1_spp() {
+  half_spp_[1] = pixel_count() ? half1_total_ / pixel_count() : 0;
+  samples_per_pixel_ = half_spp_[0] + half_spp_[1];
 }
 
 Film::Totals Film::totals() const {
@@ -73,19 +92,32 @@ Film Film::restore(int width, int height, std::vector<double> sum, std::vector<d
   film.total_segments_ = totals.total_segments;
   film.dropped_samples_ = totals.dropped_samples;
   film.half1_sum_.assign(pixels * 3, 0.0);
+  film.half1_sum_sq_.assign(pixels * 3, 0.0);
   film.half1_valid_.assign(pixels, 0.0);
+  film.half1_samples_.assign(pixels, 0);
+  film.half1_total_ = 0;
   film.half_spp_[0] = totals.samples_per_pixel;
   film.half_spp_[1] = 0;
   return film;
 }
 
-void Film::restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp) {
-  if (half1_sum.size() != sum_.size() || half1_valid.size() != valid_.size() || half1_spp > samples_per_pixel_)
+void Film::restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp,
+                          std::vector<double> half1_sum_sq, std::vector<uint32_t> half1_samples) {
+  if (half1_sum_sq.empty()) half1_sum_sq.assign(sum_sq_.size(), 0.0);
+  if (half1_samples.empty()) half1_samples.assign(valid_.size(), static_cast<uint32_t>(std::min<uint64_t>(half1_spp, UINT32_MAX)));
+  uint64_t total = 0;
+  for (uint32_t n : half1_samples) total += n;
+  if (half1_sum.size() != sum_.size() || half1_valid.size() != valid_.size() || half1_sum_sq.size() != sum_sq_.size() ||
+      half1_samples.size() != valid_.size() || half1_spp > samples_per_pixel_ ||
+      (pixel_count() && total / pixel_count() != half1_spp))
     throw std::invalid_argument("Film::restore_halves: half-film does not match the film");
   half1_sum_ = std::move(half1_sum);
+  half1_sum_sq_ = std::move(half1_sum_sq);
   half1_valid_ = std::move(half1_valid);
-  half_spp_[1] = half1_spp;
+  half1_samples_ = std::move(half1_samples);
+  half1_total_ = total;
   half_spp_[0] = samples_per_pixel_ - half1_spp;
+  update_half1_spp();
 }
 
 std::vector<float> Film::mean_rgb() const {

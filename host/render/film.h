@@ -2,7 +2,9 @@
 // pass from the device's float pass statistics. It yields the pixel mean and the variance of
 // that mean, per channel. Every pass also goes, whole, into one of two half-films (the half with
 // fewer samples per pixel; half 0 on a tie), whose difference is an unbiased measure of the
-// image's error whatever the sampler's stratification (render/error_estimate.h).
+// image's error whatever the sampler's stratification (render/error_estimate.h). An adaptive
+// pass (render/adaptive_sampling.h) goes to half 1 and gives each pixel its own number of
+// samples, one or more slots of `samples` each; half 0 stays uniform.
 #pragma once
 
 #include <cstddef>
@@ -35,7 +37,12 @@ class Film {
   // ranges; samples_per_pixel() advances once, when the launches of the pass have covered
   // pixel_count() pixels. Contract: the launches of one pass share `samples`, cover each pixel
   // once, and do not interleave with another pass (throws std::logic_error otherwise).
-  void add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples);
+  // An adaptive pass passes its `slots`: the launch's entry i is then slot pixel_begin + i, added
+  // to that slot's pixel in half 1, and the pass is complete when its launches have covered
+  // slots->size() slots. `half`: the half a uniform pass goes to (-1: next_half()); the pass
+  // loop gives the half its sample indices came from (sample_begin's CLPT_SAMPLE_STREAM_BIT).
+  void add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples,
+                const std::vector<GpuSampleSlot>* slots = nullptr, int half = -1);
   // True between passes (no pass partly added): the film is then a consistent image.
   bool between_passes() const { return pending_pixels_ == 0; }
 
@@ -47,22 +54,28 @@ class Film {
   // Both, as the statistics read a render (tools/image_compare.h, tools/tradeoff.h).
   MeanVarianceImage mean_variance() const { return {width_, height_, mean_rgb(), variance_rgb()}; }
 
-  // Samples per pixel taken so far (the same for every pixel after whole passes).
+  // Samples per pixel taken so far: half 0's plus half 1's (half_samples_per_pixel). The same
+  // for every pixel after whole uniform passes; the mean over pixels with adaptive passes.
   uint64_t samples_per_pixel() const { return samples_per_pixel_; }
   uint64_t total_samples() const { return total_samples_; }
   uint64_t total_segments() const { return total_segments_; }
   // Samples dropped because their radiance had a NaN or Inf channel.
   uint64_t dropped_samples() const { return dropped_samples_; }
 
-  // The two half-films. Half 1's sums and valid counts are stored; half 0 is the whole film less
-  // half 1. half_samples_per_pixel(h): samples per pixel of the whole passes added to half h.
-  // Half 1's samples have indices from 2^31 (pass_schedule.h).
+  // The two half-films. Half 1's sums, sums of squares, valid counts and samples are stored;
+  // half 0 is the whole film less half 1. half_samples_per_pixel(h): samples per pixel of the
+  // whole passes added to half h; for half 1 the mean over pixels, rounded down, of
+  // half1_samples() (every pixel's own count, NaN/Inf samples included: its next sample index
+  // is 2^31 + that count). Half 1's samples have indices from 2^31 (pass_schedule.h).
   // next_half(): the half the next pass goes to (fewer samples; 0 on a tie), fixed by the film's
   // own state, so every device and every resumed render agrees on it.
   uint64_t half_samples_per_pixel(int half) const { return half_spp_[half & 1]; }
   int next_half() const { return half_spp_[1] < half_spp_[0] ? 1 : 0; }
   const std::vector<double>& half1_sums() const { return half1_sum_; }
+  const std::vector<double>& half1_sums_of_squares() const { return half1_sum_sq_; }
   const std::vector<double>& half1_valid_counts() const { return half1_valid_; }
+  const std::vector<uint32_t>& half1_samples() const { return half1_samples_; }
+  uint64_t half1_total_samples() const { return half1_total_; }
 
   // The accumulated state, for checkpoints (render/checkpoint.h). Sums are RGB interleaved per
   // pixel; valid counts one per pixel.
@@ -77,28 +90,37 @@ class Film {
   // not match width x height.
   static Film restore(int width, int height, std::vector<double> sum, std::vector<double> sum_sq,
                       std::vector<double> valid, const Totals& totals);
-  // The half-films of a restored film: half 1's sums (3 per pixel) and valid counts, and its
-  // samples per pixel (half 0 holds the rest). A film restored without them (a version-1
-  // checkpoint) has everything in half 0, and the next passes go to half 1 until it catches up.
-  // Throws std::invalid_argument on sizes that do not match, or half1_spp > samples_per_pixel().
-  void restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp);
+  // The half-films of a restored film: half 1's sums (3 per pixel), valid counts, sums of squares
+  // (3 per pixel; empty: unknown, zeros, as in a version-2 checkpoint, which only non-adaptive
+  // renders wrote) and per-pixel samples (empty: half1_spp each, a uniform half). A film
+  // restored without them (a version-1 checkpoint) has everything in half 0, and the next
+  // passes go to half 1 until it catches up. Throws std::invalid_argument on sizes that do not
+  // match, or half 1 holding more samples than the film.
+  void restore_halves(std::vector<double> half1_sum, std::vector<double> half1_valid, uint64_t half1_spp,
+                      std::vector<double> half1_sum_sq = {}, std::vector<uint32_t> half1_samples = {});
 
  private:
-  // Advances samples_per_pixel_ once the current pass has covered every pixel.
-  void track_pass_coverage(size_t pixels, uint32_t samples);
+  // Advances samples_per_pixel_ once the current pass has covered every pixel (a uniform pass)
+  // or every slot (`pass_slots` of an adaptive pass).
+  void track_pass_coverage(size_t pixels, uint32_t samples, size_t pass_slots);
+  // half_spp_[1] and samples_per_pixel_ from half1_total_ and half_spp_[0].
+  void update_half1_spp();
 
   int width_, height_;
   std::vector<double> sum_;     // 3 per pixel
   std::vector<double> sum_sq_;  // 3 per pixel
   std::vector<double> valid_;   // valid samples per pixel
   std::vector<double> half1_sum_;    // 3 per pixel: sums of the passes of half 1
+  std::vector<double> half1_sum_sq_;  // 3 per pixel: sums of squares of the passes of half 1
   std::vector<double> half1_valid_;  // valid samples per pixel in half 1
+  std::vector<uint32_t> half1_samples_;  // samples per pixel in half 1, valid or not
+  uint64_t half1_total_ = 0;             // their sum over pixels
   uint64_t half_spp_[2] = {0, 0};    // samples per pixel of each half's whole passes
   uint64_t samples_per_pixel_ = 0;
   uint64_t total_samples_ = 0;
   uint64_t total_segments_ = 0;
   uint64_t dropped_samples_ = 0;
-  size_t pending_pixels_ = 0;     // pixels of the current pass added so far
+  size_t pending_pixels_ = 0;     // pixels (slots, of an adaptive pass) of the current pass added so far
   uint32_t pending_samples_ = 0;  // samples per pixel of the current pass
   int pending_half_ = 0;          // the half the current pass goes to
 };

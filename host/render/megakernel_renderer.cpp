@@ -27,7 +27,7 @@ uint32_t MegakernelRenderer::max_samples_per_pass(uint32_t pixel_count) const {
   return max_samples_per_pass_for(ctx_.device(), pixel_count);
 }
 
-std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams& params) {
+std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots) {
   const size_t jobs = size_t(params.pixel_count) * params.samples_per_pass;
   if (results_.bytes() < jobs * sizeof(cl_float4))
     results_ = Buffer(ctx_, jobs * sizeof(cl_float4), CL_MEM_READ_WRITE, "job results");
@@ -35,14 +35,16 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
   const cl_uint next = bind_scene(kernel_, 0, scene_);
   kernel_.set_arg(next, params);
-  kernel_.set_arg(next + 1, results_);
+  kernel_.set_arg(next + 1, upload_slots(ctx_, params, slots));
+  kernel_.set_arg(next + 2, results_);
   film_.set_arg(0, params);
   film_.set_arg(1, results_);
   film_.set_arg(2, pass_);
   // A launch over part of the image (watchdog-sized, pass_loop.h) gets a fixed work-group size
   // when none was asked for: those launches vary in size, and a driver left to choose picks (and
   // PoCL compiles a kernel variant for, about a second each) a new work-group size for each.
-  const bool whole_image = params.pixel_begin == 0 && params.pixel_count == params.width * params.height;
+  const bool whole_image =
+      !params.slotted && params.pixel_begin == 0 && params.pixel_count == params.width * params.height;
   const size_t local_size = local_size_ || whole_image ? local_size_ : kPartialLaunchLocalSize;
   // The lockstep loop runs whole work-groups (megakernel.cl): round the launch up to them.
   const size_t global_size = lockstep_group_ ? (jobs + lockstep_group_ - 1) / lockstep_group_ * lockstep_group_ : jobs;

@@ -24,7 +24,7 @@ class MegakernelRenderer : public Renderer {
 
   // Traces params.samples_per_pass samples, starting at params.sample_begin, for the pixels
   // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
-  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
+  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots = nullptr) override;
 
   // One result slot (16 bytes) per sample of a launch, within launch_buffer_budget.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;

@@ -54,10 +54,11 @@ class PassTracer {
   virtual bool coordinator() const = 0;
   // Gives every rank the coordinator's `decision` (a single process: unchanged).
   virtual void share(PassDecision& decision) = 0;
-  // Traces `pass` (samples_per_pass from sample_begin, over the whole image); on the coordinator
-  // its results are in `film` when it returns, every pixel added once. Throws Error(DeviceError)
-  // when every device (of every rank) has failed.
-  virtual void trace(const GpuRenderParams& pass, Film& film) = 0;
+  // Traces `pass` (samples_per_pass from sample_begin, over the whole image; or, adaptive, over
+  // its `slots`, which only the coordinator need pass); on the coordinator its results are in
+  // `film` when it returns, every pixel (slot) added once. Throws Error(DeviceError) when every
+  // device (of every rank) has failed.
+  virtual void trace(const GpuRenderParams& pass, Film& film, const std::vector<GpuSampleSlot>* slots) = 0;
   // The largest samples per pass every working device accepts for `pixel_count` pixels.
   virtual uint32_t max_samples_per_pass(uint32_t pixel_count) const = 0;
   // Whether another process of the job has been interrupted (SIGINT/SIGTERM reached it).
@@ -74,7 +75,7 @@ class DevicePoolTracer final : public PassTracer {
   explicit DevicePoolTracer(DevicePool& pool) : pool_(pool) {}
   bool coordinator() const override { return true; }
   void share(PassDecision&) override {}
-  void trace(const GpuRenderParams& pass, Film& film) override;
+  void trace(const GpuRenderParams& pass, Film& film, const std::vector<GpuSampleSlot>* slots) override;
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
   std::vector<std::string> take_notices() override;
 

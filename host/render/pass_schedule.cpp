@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "render/adaptive_sampling.h"
 #include "render/limits.h"
 
 namespace clpt {
@@ -34,6 +36,45 @@ uint64_t predicted_spp_for(const ErrorEstimate& estimate, uint64_t spp, double t
   const double ratio = estimate.relative_rmse_upper / target_error;
   return uint64_t(std::min(double(kMaxSpp), std::ceil(double(spp) * ratio * ratio)));
 }
+
+namespace {
+
+// Adaptive mode's passes (adaptive_sampling.h), sized by the image alone: below the ladder's first
+// point, uniform passes fill each half to half of it (or to the render's end); in a round, half 1's
+// slots, then half 0's uniform passes.
+void plan_adaptive_pass(const Film& film, uint64_t stop_spp, uint32_t g, uint32_t device_limit, NextPass& next) {
+  const uint64_t pixels = std::max<uint64_t>(film.pixel_count(), 1);
+  const uint64_t uniform_spp = std::min<uint64_t>(
+      round_up(std::max<uint64_t>(1, (kAdaptivePassSamples + pixels - 1) / pixels), g), std::max(g, device_limit / g * g));
+  const uint64_t half_spp[2] = {film.half_samples_per_pixel(0), film.half_samples_per_pixel(1)};
+  const std::optional<AdaptiveRound> round = adaptive_round(film, stop_spp, g);
+  uint64_t half_end[2];
+  if (round) {
+    const uint64_t half1_end_total = pixels * round->half1_end;
+    if (film.half1_total_samples() < half1_end_total) {
+      next.adaptive = true;
+      next.half = 1;
+      next.samples = g;
+      next.slot_begin = (film.half1_total_samples() - pixels * (round->start_spp / 2)) / g;
+      const uint64_t left = (half1_end_total - film.half1_total_samples()) / g;
+      next.slot_count = static_cast<uint32_t>(std::min<uint64_t>(left, std::max<uint64_t>(1, kAdaptivePassSamples / g)));
+      next.sample_begin = 0;
+      return;
+    }
+    half_end[0] = round->half0_end;
+    half_end[1] = round->half1_end;
+  } else {
+    const uint64_t first = check_ladder_at_or_above(0, g);
+    half_end[0] = stop_spp < first ? round_up((stop_spp + 1) / 2, g) : first / 2;
+    half_end[1] = stop_spp < first ? stop_spp - half_end[0] : first / 2;
+  }
+  next.half = half_spp[1] < half_end[1] && half_spp[1] < half_spp[0] ? 1 : 0;
+  if (half_spp[next.half] >= half_end[next.half]) next.half ^= 1;
+  next.sample_begin = static_cast<uint32_t>((uint64_t(next.half) << CLPT_SAMPLE_STREAM_BIT) + half_spp[next.half]);
+  next.samples = static_cast<uint32_t>(std::min(uniform_spp, half_end[next.half] - half_spp[next.half]));
+}
+
+}  // namespace
 
 NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
                         PassScheduleState& state) {
@@ -71,6 +112,12 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
     }
   }
 
+  const uint32_t device_limit = measured.max_samples_per_pass ? measured.max_samples_per_pass : kMaxSamplesPerPass;
+  if (request.adaptive) {
+    plan_adaptive_pass(film, stop_spp, g, device_limit, next);
+    return next;
+  }
+
   // Pass size: about pass_target_s at the measured rate (less when the time budget ends sooner).
   double pass_s = request.pass_target_s;
   if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - measured.elapsed_s));
@@ -84,7 +131,6 @@ NextPass plan_next_pass(const Film& film, const PassRequest& request, const Pass
   // Target error: each half reaches half the next check point.
   if (target_mode && state.next_check_spp > spp && state.next_check_spp / 2 > half_spp[next.half])
     n = std::min(n, state.next_check_spp / 2 - half_spp[next.half]);
-  const uint32_t device_limit = measured.max_samples_per_pass ? measured.max_samples_per_pass : kMaxSamplesPerPass;
   n = std::min<uint64_t>(n, std::max(g, device_limit / g * g));
   n = std::min(n, stop_spp - spp);
   next.samples = static_cast<uint32_t>(std::max<uint64_t>(n, 1));

@@ -32,7 +32,15 @@ struct PassRequest {
   double target_error = 0;    // relative RMSE (error_estimate.h) at which to stop; 0: none
   uint32_t granularity = 1;   // samples per pass are a multiple of this (sampler period)
   double pass_target_s = 0.5; // wall time per pass, from the measured rate
+  bool adaptive = false;      // adaptive sampling (adaptive_sampling.h): rounds, and passes sized by the image alone
 };
+
+// Adaptive mode: a pass holds about this many samples whatever the devices' rate (a uniform pass
+// rounds it up to whole samples per pixel and the sampler's granularity), so that the passes, and
+// the film's float sums, do not depend on the device split (adaptive_sampling.h). About 0.13 s on
+// the 2-core test machine; an adaptive pass's slot results wait for the film in host memory
+// (32 bytes a slot, at most 32 MiB).
+constexpr uint64_t kAdaptivePassSamples = uint64_t(1) << 20;
 
 // What the pass loop has measured so far.
 struct PassMeasurements {
@@ -55,8 +63,13 @@ struct NextPass {
   // Index of the pass's first sample: the half's samples so far, from 0 for half 0 and from
   // 2^CLPT_SAMPLE_STREAM_BIT for half 1 (kernels/types.h: an independent Sobol randomisation).
   uint32_t sample_begin = 0;
-  uint32_t samples = 0;                // samples per pixel of the pass
-  int half = 0;                        // the half-film it goes to (film.next_half())
+  uint32_t samples = 0;                // samples per pixel (per slot, adaptive) of the pass
+  int half = 0;                        // the half-film it goes to (film.next_half(); 1 when adaptive)
+  // An adaptive pass: slots [slot_begin, slot_begin + slot_count) of its round's table
+  // (adaptive_sampling.h), `samples` (the granularity) each; sample_begin is then unused.
+  bool adaptive = false;
+  uint64_t slot_begin = 0;
+  uint32_t slot_count = 0;
   ErrorEstimate estimate;              // of the film before the pass
   // Target error: the total samples per pixel the estimate predicts the target needs (error
   // falling as 1/sqrt(spp)); 0 when unknown.

@@ -47,6 +47,7 @@ std::vector<std::string> render_identity(const RenderRequest& request, const Ren
       "target error: " + std::to_string(plan.target_error),
       "seed: " + std::to_string(s.seed),
       std::string("sampler: ") + sampler_name(s.sampler),
+      std::string("adaptive sampling: ") + (plan.adaptive ? "on" : "off"),
       "max bounces: " + std::to_string(s.max_bounces),
       "estimator: " + s.estimator,
       "rr from: " + std::to_string(s.rr_from),
@@ -178,7 +179,8 @@ void RankPassTracer::share(PassDecision& d) {
   std::_Exit(1);
 }
 
-RankPassTracer::PartResult RankPassTracer::trace_part(const GpuRenderParams& pass, PixelRange part) {
+RankPassTracer::PartResult RankPassTracer::trace_part(const GpuRenderParams& pass, PixelRange part,
+                                                      const std::vector<GpuSampleSlot>* slots) {
   PartResult r;
   if (part.count > 0 && pool_) {
     r.pixels.resize(part.count);
@@ -186,7 +188,7 @@ RankPassTracer::PartResult RankPassTracer::trace_part(const GpuRenderParams& pas
     try {
       pool_->run_pass_part(pass, part, [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
         std::copy(result.begin(), result.end(), r.pixels.begin() + (pixel_begin - part.begin));
-      });
+      }, slots);
     } catch (const Error& e) {
       if (!pool_->every_device_failed()) throw;  // not a device failure: the job stops
       r.ok = false;
@@ -203,7 +205,19 @@ RankPassTracer::PartResult RankPassTracer::trace_part(const GpuRenderParams& pas
   return r;
 }
 
-void RankPassTracer::trace(const GpuRenderParams& pass, Film& film) {
+void RankPassTracer::trace(const GpuRenderParams& pass, Film& film, const std::vector<GpuSampleSlot>* slots) {
+  std::vector<GpuSampleSlot> received;  // an adaptive pass's slots, as rank 0 sent them
+  if (pass.slotted) {
+    ByteWriter table;
+    if (group_.coordinator()) table.put_array(*slots);
+    group_.broadcast(table.bytes());
+    ByteReader in(table.bytes());
+    received = in.get_array<GpuSampleSlot>();
+    slots = &received;
+  } else {
+    slots = nullptr;
+  }
+  const int half = int(pass.sample_begin >> CLPT_SAMPLE_STREAM_BIT);
   std::vector<PixelRange> left;  // rank 0: pixels of the pass not traced yet
   if (group_.coordinator()) left.push_back(PixelRange{0, pass.pixel_count});
   for (;;) {
@@ -238,7 +252,7 @@ void RankPassTracer::trace(const GpuRenderParams& pass, Film& film) {
     if (round == Round::EveryRankFailed) throw JobError(ExitCode::DeviceError, in.get_string());
     parts = in.get_array<PixelRange>();
     const PixelRange part = parts[size_t(group_.rank())];
-    const PartResult mine = trace_part(pass, part);
+    const PartResult mine = trace_part(pass, part, slots);
     ByteWriter reply;
     reply.put(uint8_t(mine.ok)).put(uint8_t(mine.interrupted)).put(mine.seconds).put(mine.failure).put_array(mine.pixels);
     const std::vector<std::vector<uint8_t>> all = group_.gather(reply.bytes());
@@ -264,7 +278,7 @@ void RankPassTracer::trace(const GpuRenderParams& pass, Film& film) {
       if (pixels.size() != parts[r].count)
         throw std::logic_error("RankPassTracer: a rank sent " + std::to_string(pixels.size()) + " pixels for a part of " +
                                std::to_string(parts[r].count));
-      film.add_pass(pixels, parts[r].begin, pass.samples_per_pass);
+      film.add_pass(pixels, parts[r].begin, pass.samples_per_pass, slots, half);
       rates_[r] = double(parts[r].count) * pass.samples_per_pass / seconds;
     }
   }

@@ -71,8 +71,9 @@ class RankPassTracer final : public PassTracer {
   bool coordinator() const override { return group_.coordinator(); }
   // Collective: rank 0's decision to every rank. Honours CLPT_INJECT_FAULT=exit:N.
   void share(PassDecision& decision) override;
-  // Collective: the pass over every working rank, in rounds until every pixel is traced.
-  void trace(const GpuRenderParams& pass, Film& film) override;
+  // Collective: the pass over every working rank, in rounds until every pixel is traced. An
+  // adaptive pass's slots go from rank 0 to every rank first.
+  void trace(const GpuRenderParams& pass, Film& film, const std::vector<GpuSampleSlot>* slots) override;
   uint32_t max_samples_per_pass(uint32_t) const override { return max_samples_per_pass_; }
   bool others_interrupted() const override { return others_interrupted_; }
   std::vector<std::string> take_notices() override;
@@ -89,7 +90,7 @@ class RankPassTracer final : public PassTracer {
     std::string failure;
     std::vector<GpuPixelPass> pixels;
   };
-  PartResult trace_part(const GpuRenderParams& pass, PixelRange part);
+  PartResult trace_part(const GpuRenderParams& pass, PixelRange part, const std::vector<GpuSampleSlot>* slots);
 
   RankGroup& group_;
   DevicePool* pool_;

@@ -85,6 +85,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   plan.time_limit_s = request.time_limit_s;
   plan.target_error = request.target_error;
   plan.sampler_granularity = s.sampler == Sampler::Grid ? 16u : 1u;
+  plan.adaptive = request.adaptive;
   plan.precision = request.precision;
   plan.use_kernel_cache = request.use_kernel_cache;
 
@@ -129,6 +130,9 @@ std::string explain_plan(const RenderPlan& plan) {
     << (plan.time_limit_s > 0 ? ", at most " + std::to_string(plan.time_limit_s) + " s" : std::string())
     << (plan.target_error > 0 ? ", until the estimated relative error is at most " +
                                     std::to_string(plan.target_error) : std::string())
+    << (plan.adaptive ? ", adaptive sampling (half 1 where half 0's neighbours say the error is largest; "
+                        "passes sized by the image alone)"
+                      : std::string())
     << ", passes in multiples of " << plan.sampler_granularity << " sample(s) per pixel"
     << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "") << ", kernel cache "
     << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";

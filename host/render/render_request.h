@@ -26,6 +26,7 @@ struct RenderRequest {
   double time_limit_s = 0;   // --time; 0 = none (then settings.spp decides)
   double target_error = 0;   // --target-error: relative RMSE to stop at (render/error_estimate.h); 0 = none
   bool spp_given = true;     // false when only --time or --target-error bound the render
+  bool adaptive = false;     // --adaptive: adaptive sampling (render/adaptive_sampling.h)
   bool show_progress = false;
   Precision precision = Precision::Robust;  // --precision
   std::optional<Intersection> intersection;  // --intersection; unset: the preset's

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "kernels/kernel_source.h"
 #include "util/clock.h"
@@ -42,6 +43,17 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   set.triangles = upload_entries(ctx, scene.triangles, "triangles");
   set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
   return set;
+}
+
+const Buffer& Renderer::upload_slots(DeviceContext& ctx, const GpuRenderParams& params, const GpuSampleSlot* slots) {
+  const size_t entries = params.slotted ? params.pixel_count : 1;
+  if (slots_.bytes() < entries * sizeof(GpuSampleSlot))
+    slots_ = Buffer(ctx, entries * sizeof(GpuSampleSlot), CL_MEM_READ_ONLY, "sample slots");
+  if (params.slotted) {
+    if (!slots) throw std::logic_error("Renderer: an adaptive launch without its slots");
+    ctx.write(slots_, slots, entries * sizeof(GpuSampleSlot));
+  }
+  return slots_;
 }
 
 cl_uint Renderer::bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene) {

@@ -27,8 +27,11 @@ class Renderer {
   virtual ~Renderer() = default;
 
   // Traces params.samples_per_pass samples from params.sample_begin for the pixels
-  // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
-  virtual std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) = 0;
+  // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking). An adaptive
+  // launch (params.slotted) traces them for each of its pixel_count `slots` instead (a pixel and
+  // its first sample each; kernels/film.cl) and returns one entry per slot.
+  virtual std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params,
+                                                const GpuSampleSlot* slots = nullptr) = 0;
 
   // Largest samples_per_pass this renderer accepts for `pixel_count` pixels (memory bound).
   virtual uint32_t max_samples_per_pass(uint32_t pixel_count) const = 0;
@@ -54,7 +57,14 @@ class Renderer {
   // Sets the five scene buffers as arguments first, first + 1, ...; returns the next index.
   static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
 
+  // The launch's slot buffer: `slots` (params.pixel_count of them) written to the device for an
+  // adaptive launch; for a uniform one a placeholder entry the kernels never read.
+  const Buffer& upload_slots(DeviceContext& ctx, const GpuRenderParams& params, const GpuSampleSlot* slots);
+
   double build_seconds_ = 0;
+
+ private:
+  Buffer slots_;
 };
 
 }  // namespace clpt

@@ -83,10 +83,11 @@ std::vector<StageTime> WavefrontRenderer::stage_times() const {
 void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_begin,
                                  uint32_t slot_begin, uint32_t count) {
   generate_.set_arg(0, params);
-  generate_.set_arg(1, job_begin);
-  generate_.set_arg(2, slot_begin);
-  generate_.set_arg(3, count);
-  bind(generate_, 4, state_);
+  generate_.set_arg(1, *sample_slots_);
+  generate_.set_arg(2, job_begin);
+  generate_.set_arg(3, slot_begin);
+  generate_.set_arg(4, count);
+  bind(generate_, 5, state_);
   record("generate", ctx_.launch_profiled(generate_, count, local_size_, "wf_generate"));
 }
 
@@ -95,17 +96,19 @@ void WavefrontRenderer::generate(const GpuRenderParams& params, uint32_t job_beg
 uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, uint32_t active) {
   const cl_uint after_scene = bind_scene(intersect_, 0, scene_);
   intersect_.set_arg(after_scene, params);
-  intersect_.set_arg(after_scene + 1, active);
-  bind(intersect_, bind(intersect_, after_scene + 2, scratch_), state_);
+  intersect_.set_arg(after_scene + 1, *sample_slots_);
+  intersect_.set_arg(after_scene + 2, active);
+  bind(intersect_, bind(intersect_, after_scene + 3, scratch_), state_);
   record("intersect", ctx_.launch_profiled(intersect_, active, local_size_, "wf_intersect"));
   const cl_uint zero = 0;
   ctx_.write_async(survivors_, &zero, sizeof zero);
   bind_scene(shade_, 0, scene_);
   shade_.set_arg(after_scene, params);
-  shade_.set_arg(after_scene + 1, active);
-  shade_.set_arg(after_scene + 2, results_);
-  shade_.set_arg(after_scene + 3, survivors_);
-  bind(shade_, bind(shade_, bind(shade_, after_scene + 4, scratch_), state_), next_state_);
+  shade_.set_arg(after_scene + 1, *sample_slots_);
+  shade_.set_arg(after_scene + 2, active);
+  shade_.set_arg(after_scene + 3, results_);
+  shade_.set_arg(after_scene + 4, survivors_);
+  bind(shade_, bind(shade_, bind(shade_, after_scene + 5, scratch_), state_), next_state_);
   record("shade", ctx_.launch_profiled(shade_, active, local_size_, "wf_shade"));
   cl_uint survivors = 0;
   ctx_.read(survivors_, &survivors, sizeof survivors);  // blocking: `zero` lives until here
@@ -114,7 +117,8 @@ uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, u
   return survivors;
 }
 
-std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& params) {
+std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots) {
+  sample_slots_ = &upload_slots(ctx_, params, slots);
   const uint64_t jobs = uint64_t(params.pixel_count) * params.samples_per_pass;
   const size_t result_bytes = size_t(jobs) * sizeof(cl_float4);
   if (results_.bytes() < result_bytes) results_ = Buffer(ctx_, result_bytes, CL_MEM_READ_WRITE, "job results");

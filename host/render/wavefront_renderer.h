@@ -20,7 +20,7 @@ class WavefrontRenderer : public Renderer {
   WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scene, const KernelFeatures& features,
                     uint32_t paths_in_flight = 0, size_t local_size = 0);
 
-  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params) override;
+  std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots = nullptr) override;
   // One result slot (16 bytes) per sample of the pass: bounded to launch_buffer_budget()
   // = min(kMaxLaunchBufferBytes, the device's max allocation / 2), but at least one sample.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
@@ -53,6 +53,7 @@ class WavefrontRenderer : public Renderer {
   std::vector<Buffer> state_, next_state_;  // one per CLPT_PATH_STATE_FIELDS entry, twice
   std::vector<Buffer> scratch_;               // one per CLPT_PATH_SCRATCH_FIELDS entry
   Buffer survivors_, results_, pass_;
+  const Buffer* sample_slots_ = nullptr;  // this pass's slots (Renderer::upload_slots)
   std::map<std::string, StageTime> times_;
   std::vector<std::pair<const char*, EventHandle>> pending_;
 };
