@@ -4,7 +4,8 @@
 # (the film's double sums, bit for bit, with cmp): the grid sampler at 32 spp makes every render
 # exactly two passes of 16 (the first pass is one sampler period, the second what is left), so
 # the pass boundaries are those of one process whatever the timing.
-#  * 1 process, mpirun -n 2 and -n 3: the same film, bit for bit; jitter and sobol likewise (-n 2);
+#  * 1 process, mpirun -n 2 and -n 3: the same film, bit for bit; jitter, sobol and --adaptive
+#    likewise (-n 2);
 #  * a plain process maps no MPI library; under mpirun the ranks load libclpt_mpi.so;
 #  * the summary names every rank with its host, devices, share, paths/s and busy time;
 #  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share (and the image is one
@@ -58,6 +59,11 @@ for sampler in jitter sobol; do
   "${mpirun[@]}" -n 2 "$clpt" "${args[@]}" -q -o s2.pfm --checkpoint $sampler.two.ckpt || fail "$sampler: mpirun exit $?"
   same_film $sampler.one.ckpt $sampler.two.ckpt "--sampler $sampler over 2 ranks"
 done
+# Adaptive sampling: rank 0 sends each adaptive pass's slots; the film of one process.
+adaptive=(render "$scene" "${small[@]}" --sampler jitter --estimator nee --adaptive --spp 48)
+"$clpt" "${adaptive[@]}" -q -o ad1.pfm --checkpoint ad1.ckpt || fail "adaptive: one process exit $?"
+"${mpirun[@]}" -n 2 "$clpt" "${adaptive[@]}" -q -o ad2.pfm --checkpoint ad2.ckpt || fail "adaptive: mpirun exit $?"
+same_film ad1.ckpt ad2.ckpt "--adaptive over 2 ranks"
 
 # --target-error over 2 ranks: rank 0 estimates the error from its film and stops the job at the
 # sample count one process stops at (the check points depend on the samples only); pass sizes

@@ -4,7 +4,10 @@
 #    and the target, and the EXR records clpt:error_estimate (<= the target), clpt:target_error
 #    and clpt:stop;
 #  * with --spp, whichever comes first: a small --spp stops at the sample count;
-#  * a checkpointed target render resumes (version-2 checkpoint with its half-films).
+#  * a checkpointed target render resumes (a checkpoint with its half-films);
+#  * --adaptive: a render interrupted at a round's end (32 spp) and resumed to 64 has the film of
+#    a straight 64-spp render, bit for bit (adaptive passes are sized by the image alone); the
+#    EXR records clpt:adaptive; resuming an adaptive checkpoint without --adaptive is refused.
 #   target_error_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -36,6 +39,16 @@ meta s.exr 'clpt:stop: "sample count"' >/dev/null || fail "s.exr lacks clpt:stop
 "$clpt" render "$scene" "${small[@]}" --spp 8 --checkpoint c.ckpt -q -o c.exr || fail "checkpointed render"
 "$clpt" render "$scene" "${small[@]}" --target-error 0.2 --resume c.ckpt -q -o r.exr || fail "resumed target render"
 meta r.exr 'clpt:stop: "target error"' >/dev/null || fail "the resumed render did not stop at the target"
+
+# 4. Adaptive: straight and resumed renders draw the same samples in the same passes.
+"$clpt" render "$scene" "${small[@]}" --adaptive --spp 64 -q -o a64.exr --checkpoint a64.ckpt || fail "--adaptive 64 spp"
+"$clpt" render "$scene" "${small[@]}" --adaptive --spp 32 -q -o a32.pfm --checkpoint a32.ckpt || fail "--adaptive 32 spp"
+"$clpt" render "$scene" "${small[@]}" --adaptive --spp 64 -q -o ar.pfm --resume a32.ckpt --checkpoint ar.ckpt ||
+  fail "--adaptive resumed to 64 spp"
+cmp -s a64.ckpt ar.ckpt || fail "--adaptive: the resumed film differs from the straight one"
+meta a64.exr 'clpt:adaptive: "1"' >/dev/null || fail "a64.exr lacks clpt:adaptive 1"
+"$clpt" render "$scene" "${small[@]}" --spp 64 -q -o x.pfm --resume a32.ckpt 2>x.err
+[[ $? -eq 2 ]] && grep -q "adaptively" x.err || fail "resuming an adaptive checkpoint without --adaptive: $(cat x.err)"
 
 if [[ $failures -ne 0 ]]; then
   echo "$failures target-error case(s) failed"
