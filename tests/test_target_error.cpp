@@ -1,7 +1,7 @@
 // --target-error keeps its promise: renders of the book's three scenes stopped by clpt's own error
 // estimate (render/error_estimate.h) have a true relative error, against a reference with its
-// own noise removed, between 0.6 and 1.2 times the target, for every sampler, at targets of 10%
-// and 5%. Small images (48x36), fixed seeds, next-event estimation (the first picture's
+// own noise removed, between 0.6 and 1.2 times the target, for every sampler, with adaptive
+// sampling off and on (render/adaptive_sampling.h), at targets of 10% and 5%. Small images (48x36), fixed seeds, next-event estimation (the first picture's
 // estimator; the book's estimator at 10% too, where rare long paths carry the variance).
 //
 // References are rendered here, at the test's size, by clpt at many samples with the same pixel
@@ -68,13 +68,16 @@ struct Case {
   const char* estimator;
   Sampler sampler;
   double target;
+  bool adaptive;
 };
 
 // The render of `c` stopped at its target, judged against `ref`.
 void expect_calibrated(const std::string& scene_name, const Case& c, const Reference& ref) {
-  SCOPED_TRACE(scene_name + " " + c.estimator + " " + sampler_name(c.sampler) + " target " + std::to_string(c.target));
+  SCOPED_TRACE(scene_name + " " + c.estimator + " " + sampler_name(c.sampler) + " target " + std::to_string(c.target) +
+               (c.adaptive ? " adaptive" : ""));
   RenderRequest request = request_for(scene_name, c.estimator, c.sampler, 2015);
   request.target_error = c.target;
+  request.adaptive = c.adaptive;
   request.spp_given = false;
   RenderReport report;
   const Film film = run_render(request, report);
@@ -85,8 +88,8 @@ void expect_calibrated(const std::string& scene_name, const Case& c, const Refer
   const double true_mse = sq / double(x.size()) - ref.mse;
   const double true_relative = std::sqrt(std::max(0.0, true_mse)) / ref.image_mean;
   // The table of docs/target-error.md is this line (times: untimed by the test, only reported).
-  std::printf("| %s | %s | %s | %.2f | %llu | %.3f s | %.4f | %.4f | %.4f | %.2f | %.1f%% |\n",
-              scene_name.c_str(), c.estimator, sampler_name(c.sampler), c.target,
+  std::printf("| %s | %s | %s%s | %.2f | %llu | %.3f s | %.4f | %.4f | %.4f | %.2f | %.1f%% |\n",
+              scene_name.c_str(), c.estimator, sampler_name(c.sampler), c.adaptive ? ", adaptive" : "", c.target,
               (unsigned long long)film.samples_per_pixel(), report.render_seconds, report.estimate.relative_rmse,
               report.estimate.relative_rmse_upper, true_relative, true_relative / c.target,
               100 * ref.mse / std::pow(c.target * ref.image_mean, 2));
@@ -94,13 +97,15 @@ void expect_calibrated(const std::string& scene_name, const Case& c, const Refer
   EXPECT_LE(true_relative, 1.2 * c.target);
 }
 
-// Every sampler; next-event estimation at 10% and 5%, the book's estimator at 10%.
+// Every sampler, adaptive off and on; next-event estimation at 10% and 5%, the book's estimator
+// at 10%.
 std::vector<Case> cases() {
   std::vector<Case> out;
-  for (Sampler sampler : {Sampler::Jitter, Sampler::Sobol, Sampler::Grid}) {
-    for (double target : {0.10, 0.05}) out.push_back({"nee", sampler, target});
-    out.push_back({"book", sampler, 0.10});
-  }
+  for (bool adaptive : {false, true})
+    for (Sampler sampler : {Sampler::Jitter, Sampler::Sobol, Sampler::Grid}) {
+      for (double target : {0.10, 0.05}) out.push_back({"nee", sampler, target, adaptive});
+      out.push_back({"book", sampler, 0.10, adaptive});
+    }
   return out;
 }
 

@@ -237,6 +237,18 @@ TEST(TradeoffCurve, SeveralSamplersAreSeparateCurves) {
   EXPECT_EQ(curve[1].rmse, 0.02);
 }
 
+// --adaptive off,on makes adaptive sampling a dimension, with its own label.
+TEST(TradeoffCurve, AdaptiveSamplingIsItsOwnCurve) {
+  Combination plain = combination(ExecutionForm::Megakernel), adaptive = plain;
+  adaptive.adaptive = true;
+  EXPECT_EQ(adaptive.label(), "robust/book/megakernel/adaptive/dev0");
+  adaptive.sampler = "sobol";
+  EXPECT_EQ(adaptive.label(), "robust/book/megakernel/sobol/adaptive/dev0");
+  const std::vector<TradeoffRun> runs = {budget_run(plain, 1, 1.0, 0.07), budget_run(adaptive, 1, 1.1, 0.04)};
+  EXPECT_EQ(curve_of(runs, plain.label()).size(), 1u);
+  EXPECT_EQ(curve_of(runs, adaptive.label()).size(), 1u);
+}
+
 TEST(TradeoffTargetFrom, ParsesNamesInAnyOrder) {
   const TargetFrom a = parse_target_from("book@256");
   EXPECT_EQ(a.spp, 256u);

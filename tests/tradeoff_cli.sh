@@ -71,6 +71,19 @@ assert t["rmse"] == 0.5 and t["time_to_reach"][0]["status"] in ("interpolated", 
 print("ok: runs.json")
 EOF
 
+# --- Adaptive sampling as a dimension: both curves, their labels in the table and JSON --------------
+"$clpt" tradeoff "$scene" --reference inputs/ref.exr "${size[@]}" --estimator nee --adaptive off,on --budgets 0.05 \
+  --target-rmse 0.5 -o out/adaptive.json >stdout.txt 2>stderr.txt || fail "tradeoff --adaptive off,on exited $?"
+python3 - out/adaptive.json <<'EOF' || fail "adaptive.json lacks the two combinations"
+import json, sys
+j = json.load(open(sys.argv[1]))
+labels = sorted({r["combination"] for r in j["runs"]})
+assert len(labels) == 2 and any("/adaptive/" in l for l in labels) and any("/adaptive/" not in l for l in labels), labels
+print("ok: adaptive.json has both combinations")
+EOF
+grep -q "/adaptive/dev" stdout.txt || fail "the time-to-reach table lacks the adaptive combination: $(cat stdout.txt)"
+rm -f out/adaptive.json
+
 # --- Bad input --------------------------------------------------------------------------------------
 oiiotool inputs/ref.exr --ch R,G,B -o inputs/rgb.exr || fail "oiiotool could not make rgb.exr"
 # expect CODE SUBSTRING ARGS...: exits CODE, stderr holds SUBSTRING, nothing written to out2/.

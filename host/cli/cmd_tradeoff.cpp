@@ -1,7 +1,6 @@
 // `clpt tradeoff SCENE --reference REF.exr`: speed against accuracy. Renders the scene for a series
-// of time budgets in every chosen combination of precision, estimator, execution form, sampler
-// and device,
-// measures each render's error against the reference and splits it into noise and bias
+// of time budgets in every chosen combination of precision, estimator, execution form, sampler,
+// adaptive sampling and device, measures each render's error against the reference and splits it into noise and bias
 // (tools/tradeoff.h), then prints how long each combination takes to reach given RMSEs and writes
 // the runs as CSV or JSON and an RMSE-versus-time plot (through gnuplot).
 #include <algorithm>
@@ -44,6 +43,7 @@ struct TradeoffOptions {
   std::string output, plot;
   std::optional<int> width, height, max_bounces, rr_from;
   std::vector<std::string> samplers;  // --sampler: one sets the scene's; several are a dimension
+  std::vector<std::string> adaptive = {"off"};  // --adaptive: off, on, or both (a dimension)
   std::optional<uint64_t> seed;
   double launch_ms = 75;  // megakernel launch target, as `clpt render --launch-ms`
   bool no_warmup = false;
@@ -171,6 +171,7 @@ std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
     for (const std::string& e : o.estimators)
       for (const std::string& f : o.forms)
         for (const std::string& sampler : o.samplers.size() > 1 ? o.samplers : std::vector<std::string>{""})
+        for (const std::string& adaptive : o.adaptive)
         for (const std::string& spec : o.devices) {
           const DeviceInfo& device = select_device(all, spec);
           Combination c;
@@ -179,6 +180,7 @@ std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
           c.form = f == "auto" ? default_form_for(device)
                                : f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
           c.sampler = sampler;
+          c.adaptive = adaptive == "on";
           c.device_spec = spec;
           c.device_index = device.index;
           c.device_name = device.name;
@@ -199,6 +201,7 @@ TradeoffRun render_run(const Scene& scene, const Combination& c, double budget_s
   request.device = std::to_string(c.device_index);  // resolved once: the same device every run
   request.precision = c.precision;
   request.form = c.form;
+  request.adaptive = c.adaptive;
   if (fixed_spp > 0) {
     request.scene.settings.spp = int64_t(fixed_spp);
     request.spp_given = true;
@@ -363,7 +366,7 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "tradeoff",
       "Speed against accuracy: RMSE against a reference, split into noise and bias, versus render time, "
-      "for each combination of precision x estimator x form x sampler x device");
+      "for each combination of precision x estimator x form x sampler x adaptive x device");
   cmd->add_option("scene", o->scene_path, "Scene file (TOML)")->required();
   cmd->add_option("--reference", o->reference_path,
                   "Converged EXR with variance channels, e.g. from `clpt render --precision double --spp 4096`; "
@@ -403,6 +406,9 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
                   "jitter, grid or sobol (default: the scene's; the reference's, for no bias); several, "
                   "e.g. jitter,sobol: compared as a dimension (jitter and sobol converge to one image, grid to another)")
       ->delimiter(',')->check(CLI::IsMember(sampler_names()));
+  cmd->add_option("--adaptive", o->adaptive,
+                  "Adaptive sampling (`clpt render --adaptive`): off (default), on, or off,on to compare both as a dimension")
+      ->delimiter(',')->check(CLI::IsMember({"off", "on"}));
   cmd->add_option("--seed", o->seed, "Random seed (default: the scene's; never the reference's)");
   cmd->add_option("--launch-ms", o->launch_ms,
                   "Megakernel launch size target in ms, as for `clpt render --launch-ms` (0: one launch per pass)")

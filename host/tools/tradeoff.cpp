@@ -31,7 +31,7 @@ bool is_all_digits(const std::string& s) {
 
 std::string Combination::label() const {
   return std::string(precision_name(precision)) + "/" + estimator_name(estimator) + "/" +
-         execution_form_name(form) + "/" + (sampler.empty() ? "" : sampler + "/") + "dev" +
+         execution_form_name(form) + "/" + (sampler.empty() ? "" : sampler + "/") + (adaptive ? "adaptive/" : "") + "dev" +
          std::to_string(device_index);
 }
 

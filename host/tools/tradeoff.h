@@ -34,8 +34,9 @@ struct Combination {
   // --sampler with several samplers: this one's name ("jitter", "grid", "sobol"); empty: the
   // scene's sampler, which is then not part of the label.
   std::string sampler;
-  // "robust/book/megakernel/dev0" (with several samplers "robust/book/megakernel/sobol/dev0"):
-  // unique per combination, used in tables, CSV and the plot.
+  bool adaptive = false;  // --adaptive on: adaptive sampling (render/adaptive_sampling.h)
+  // "robust/book/megakernel/dev0" (with several samplers "robust/book/megakernel/sobol/dev0";
+  // adaptive: ".../adaptive/dev0"): unique per combination, used in tables, CSV and the plot.
   std::string label() const;
 };
 

@@ -60,6 +60,7 @@ nlohmann::json run_json(const TradeoffRun& run) {
       {"estimator", estimator_name(run.combination.estimator)},
       {"form", execution_form_name(run.combination.form)},
       {"sampler", run.combination.sampler.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.combination.sampler)},
+      {"adaptive", run.combination.adaptive},
       {"device", run.combination.device_name},
       {"device_index", run.combination.device_index},
       {"budget_s", json_number(run.budget_s, run.budget_s > 0)},
