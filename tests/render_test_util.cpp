@@ -14,7 +14,7 @@
 namespace clpt::test {
 
 TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed, Sampler sampler,
-                           Precision precision) {
+                           Precision precision, bool adaptive) {
   scene.settings.width = width;
   scene.settings.height = height;
   scene.settings.spp = spp;
@@ -24,6 +24,7 @@ TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint
   request.use_kernel_cache = false;  // tests compile the kernels under test from source
   request.scene = scene;
   request.precision = precision;
+  request.adaptive = adaptive;
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";
   RenderReport report;

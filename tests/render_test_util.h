@@ -18,7 +18,8 @@ struct TestRender {
 };
 
 TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed,
-                           Sampler sampler = Sampler::Jitter, Precision precision = Precision::Robust);
+                           Sampler sampler = Sampler::Jitter, Precision precision = Precision::Robust,
+                           bool adaptive = false);
 
 Scene load_book_scene(const std::string& name);  // "diffuse", "specular", "glass"
 

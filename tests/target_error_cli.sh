@@ -7,7 +7,9 @@
 #  * a checkpointed target render resumes (a checkpoint with its half-films);
 #  * --adaptive: a render interrupted at a round's end (32 spp) and resumed to 64 has the film of
 #    a straight 64-spp render, bit for bit (adaptive passes are sized by the image alone); the
-#    EXR records clpt:adaptive; resuming an adaptive checkpoint without --adaptive is refused.
+#    EXR records clpt:adaptive; resuming an adaptive checkpoint without --adaptive is refused;
+#  * adaptive and uniform renders of the three book scenes at equal total samples (512, nee,
+#    64x48, other seeds) pass `clpt compare`'s statistical test against each other.
 #   target_error_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -49,6 +51,14 @@ cmp -s a64.ckpt ar.ckpt || fail "--adaptive: the resumed film differs from the s
 meta a64.exr 'clpt:adaptive: "1"' >/dev/null || fail "a64.exr lacks clpt:adaptive 1"
 "$clpt" render "$scene" "${small[@]}" --spp 64 -q -o x.pfm --resume a32.ckpt 2>x.err
 [[ $? -eq 2 ]] && grep -q "adaptively" x.err || fail "resuming an adaptive checkpoint without --adaptive: $(cat x.err)"
+
+for name in diffuse specular glass; do
+  common=("$src/scenes/$name.toml" --width 64 --height 48 --estimator nee --sampler jitter --spp 512 -q)
+  "$clpt" render "${common[@]}" --seed 3 --adaptive -o adaptive_$name.exr || fail "$name: adaptive render"
+  "$clpt" render "${common[@]}" --seed 4 -o uniform_$name.exr || fail "$name: uniform render"
+  "$clpt" compare adaptive_$name.exr uniform_$name.exr >compare_$name.txt ||
+    { fail "$name: adaptive and uniform renders differ"; cat compare_$name.txt; }
+done
 
 if [[ $failures -ne 0 ]]; then
   echo "$failures target-error case(s) failed"

@@ -3,7 +3,8 @@
 // alone is not enough (docs/numerics.md: a mean that was right hid a ball 20% too dark). Every
 // estimator must converge to the book's image at the same path-length limit, so each variant
 // (the book's estimator, next-event estimation, either with Russian roulette; both estimators
-// with the Sobol sampler) is held to the same references.
+// with the Sobol sampler; next-event estimation with adaptive sampling, jitter and Sobol, at the
+// same total samples) is held to the same references.
 //
 // References: tests/reference/gemspt_<scene>_160x120.exr, made by gemspt (outside this tree) at
 // 8192 spp; provenance in tests/reference/README.md. A missing reference fails the test.
@@ -37,6 +38,7 @@ struct Variant {
   int rr_from;  // -1: no Russian roulette
   int64_t spp;
   Sampler sampler = Sampler::Jitter;
+  bool adaptive = false;
 };
 constexpr Variant kVariants[] = {
     {"book", "book", -1, 512},
@@ -45,6 +47,8 @@ constexpr Variant kVariants[] = {
     {"nee_rr", "nee", 2, 128},
     {"book_sobol", "book", -1, 512, Sampler::Sobol},
     {"nee_sobol", "nee", -1, 128, Sampler::Sobol},
+    {"nee_adaptive", "nee", -1, 128, Sampler::Jitter, true},
+    {"nee_sobol_adaptive", "nee", -1, 128, Sampler::Sobol, true},
 };
 constexpr int kScenes = 3;
 
@@ -67,7 +71,9 @@ void compare_with_gemspt(const std::string& scene_name, const Variant& variant,
   scene.settings.estimator = variant.estimator;
   scene.settings.rr_from = variant.rr_from;
   if (modify) modify(scene);
-  const TestRender r = render_for_test(scene, kWidth, kHeight, variant.spp, 2015, variant.sampler);
+  const TestRender r =
+      render_for_test(scene, kWidth, kHeight, variant.spp, 2015, variant.sampler, Precision::Robust, variant.adaptive);
+  ASSERT_EQ(r.film.samples_per_pixel(), uint64_t(variant.spp));
   const auto mean = r.film.mean_rgb();
   const auto var = r.film.variance_rgb();
   const std::vector<Region> regions = book_regions();
