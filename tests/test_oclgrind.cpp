@@ -256,6 +256,47 @@ TEST(OclgrindMixed, PoclAndOclgrindShareOneFilm) {
   EXPECT_LE(a.worst_mean_difference(), 1e-4) << a.describe();
 }
 
+// Adaptive sampling's slotted passes (kernels/film.cl job_pixel/job_sample: a slot buffer read by
+// every job) in both forms on the simulator: no finding, and PoCL's image of the same seed. 15x11
+// at 20 spp, next-event estimation: the uniform start to 16, then two rounds of slots (16 to 18
+// and 18 to 20), each slot one jittered sample.
+TEST(OclgrindAdaptive, SlottedPassesInBothForms) {
+  REQUIRE_OCLGRIND();
+  for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+    SCOPED_TRACE(execution_form_name(form));
+    auto request_on = [form](const std::string& device) {
+      RenderRequest request;
+      request.use_kernel_cache = false;
+      request.scene = load_book_scene("diffuse");
+      request.scene.settings.width = kWidth;
+      request.scene.settings.height = kHeight;
+      request.scene.settings.spp = 20;
+      request.scene.settings.seed = kSeed;
+      request.scene.settings.sampler = Sampler::Jitter;
+      request.scene.settings.estimator = "nee";
+      request.adaptive = true;
+      request.form = form;
+      request.megakernel_loop = MegakernelLoop::Lockstep;
+      request.launch_target_s = 0;
+      request.paths_in_flight = 64;
+      request.device = device;
+      return request;
+    };
+    RenderReport oclgrind_report, pocl_report;
+    StderrCapture capture("render");
+    const Film on_oclgrind = run_render(request_on("oclgrind"), oclgrind_report);
+    const OclgrindFindings findings = capture.finish();
+    EXPECT_TRUE(findings.clean()) << "Oclgrind reported (" << capture.path() << "): " << findings.summary();
+    EXPECT_EQ(oclgrind_report.paths, uint64_t(kWidth) * kHeight * 20);
+    const Film on_pocl = run_render(request_on("cpu"), pocl_report);
+    EXPECT_EQ(on_oclgrind.half1_samples(), on_pocl.half1_samples());  // the same allocation
+    const SameSeedAgreement a = same_seed_agreement(on_oclgrind.mean_rgb(), on_pocl.mean_rgb());
+    std::printf("adaptive, %s: Oclgrind against PoCL, same seed: %s\n", execution_form_name(form), a.describe().c_str());
+    EXPECT_GE(a.close_fraction, 0.9939) << a.describe();
+    EXPECT_LE(a.worst_mean_difference(), 1e-6) << a.describe();
+  }
+}
+
 std::string variant_test_name(const ::testing::TestParamInfo<KernelVariant>& info) {
   std::string name = info.param.name();
   for (char& c : name)
