@@ -183,26 +183,35 @@ TEST_F(Checkpoint, RoundTripsTheFilmExactly) {
   EXPECT_EQ(back.dropped_samples(), 24u);
 }
 
-// A version-1 file (before the half-films: the same bytes without the trailing half-film) is
-// still read, with every sample in half 0, so that the resumed passes fill half 1 first.
-TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
-  const Scene scene = small_scene();
+// A 4x3 film of two uniform passes of 3 samples (the second in half 1).
+Film two_pass_film() {
   Film film(4, 3);
   GpuPixelPass p{};
   p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 3;
   film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
   film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  return film;
+}
+
+// Makes the checkpoint at `path` an older version's file: its last `newer_bytes` cut, the
+// version field rewritten.
+void downgrade_checkpoint(const std::string& path, size_t newer_bytes, uint32_t version) {
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - newer_bytes);
+  std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(8);
+  f.write(reinterpret_cast<const char*>(&version), sizeof version);
+}
+
+// What version 3 added for 12 pixels: the adaptive flag, half-1 sums of squares and sample counts.
+constexpr size_t kVersion3Bytes = 1 + 12 * 3 * sizeof(double) + 12 * sizeof(uint32_t);
+
+// A version-1 file (before the half-films: the same bytes without the trailing half-film) is
+// still read, with every sample in half 0, so that the resumed passes fill half 1 first.
+TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
+  const Scene scene = small_scene();
+  const Film film = two_pass_film();
   save_checkpoint(path_, scene, film);
-  // Version 2's half-film and version 3's adaptive flag, half-1 sums of squares and sample counts.
-  const size_t pixels = 12, half_film_bytes = 8 + pixels * 4 * sizeof(double) + 1 + pixels * 3 * sizeof(double) +
-                                              pixels * sizeof(uint32_t);
-  std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - half_film_bytes);
-  {
-    std::fstream f(path_, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(8);
-    const uint32_t version = 1;
-    f.write(reinterpret_cast<const char*>(&version), sizeof version);
-  }
+  downgrade_checkpoint(path_, 8 + 12 * 4 * sizeof(double) + kVersion3Bytes, 1);
   const Film back = load_checkpoint(path_, scene);
   EXPECT_EQ(back.samples_per_pixel(), 6u);
   EXPECT_EQ(back.sums(), film.sums());
@@ -211,22 +220,12 @@ TEST_F(Checkpoint, ReadsVersion1FilesWithEverythingInHalf0) {
   EXPECT_EQ(back.next_half(), 1);
 }
 
+// A version-2 file (before adaptive sampling) is read as a non-adaptive render with uniform halves.
 TEST_F(Checkpoint, ReadsVersion2FilesAsNonAdaptive) {
   const Scene scene = small_scene();
-  Film film(4, 3);
-  GpuPixelPass p{};
-  p.sum[0] = 0.1f, p.sum_sq[0] = 0.01f, p.valid_samples = 3;
-  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
-  film.add_pass(std::vector<GpuPixelPass>(12, p), 0, 3);
+  const Film film = two_pass_film();
   save_checkpoint(path_, scene, film);
-  const size_t pixels = 12, version3_bytes = 1 + pixels * 3 * sizeof(double) + pixels * sizeof(uint32_t);
-  std::filesystem::resize_file(path_, std::filesystem::file_size(path_) - version3_bytes);
-  {
-    std::fstream f(path_, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(8);
-    const uint32_t version = 2;
-    f.write(reinterpret_cast<const char*>(&version), sizeof version);
-  }
+  downgrade_checkpoint(path_, kVersion3Bytes, 2);
   const Film back = load_checkpoint(path_, scene);
   EXPECT_EQ(back.half_samples_per_pixel(1), 3u);
   EXPECT_EQ(back.half1_samples(), std::vector<uint32_t>(12, 3u));

@@ -104,16 +104,24 @@ TEST(MultiDeviceIdentical, SobolTwoDevicesGiveTheImageOfOne) {
 // --target-error over two devices stops at the sample count of one device (the stopping rule
 // reads only the samples, pass_schedule.h), with the same image up to the float rounding of pass
 // sums (pass sizes follow each run's measured rate).
-TEST(MultiDeviceIdentical, TargetErrorStopsAtTheSameSamplesOnTwoDevices) {
-  require_two_devices();
-  auto render = [](const std::string& device, RenderReport& report) {
-    RenderRequest request = one_pass_request(device, ExecutionForm::Megakernel);
-    request.scene.settings.estimator = "nee";
-    request.scene.settings.sampler = Sampler::Jitter;
+// The glass scene of one_pass_request with next-event estimation and jitter, stopped at a
+// relative error of 0.1 (target) or at 96 spp, adaptive or not, on `device`.
+Film render_nee(const std::string& device, bool target, bool adaptive, RenderReport& report) {
+  RenderRequest request = one_pass_request(device, ExecutionForm::Megakernel);
+  request.scene.settings.estimator = "nee";
+  request.scene.settings.sampler = Sampler::Jitter;
+  request.scene.settings.spp = 96;
+  request.adaptive = adaptive;
+  if (target) {
     request.target_error = 0.1;
     request.spp_given = false;
-    return run_render(request, report);
-  };
+  }
+  return run_render(request, report);
+}
+
+TEST(MultiDeviceIdentical, TargetErrorStopsAtTheSameSamplesOnTwoDevices) {
+  require_two_devices();
+  auto render = [](const std::string& device, RenderReport& report) { return render_nee(device, true, false, report); };
   RenderReport one_report, two_report;
   const Film one = render("0", one_report);
   const Film two = render("all", two_report);
@@ -132,18 +140,7 @@ TEST(MultiDeviceIdentical, AdaptiveSamplingGivesTheFilmOfOneDevice) {
   require_two_devices();
   for (bool target : {false, true}) {
     SCOPED_TRACE(target ? "target error 0.1" : "96 spp");
-    auto render = [&](const std::string& device, RenderReport& report) {
-      RenderRequest request = one_pass_request(device, ExecutionForm::Megakernel);
-      request.scene.settings.estimator = "nee";
-      request.scene.settings.sampler = Sampler::Jitter;
-      request.scene.settings.spp = 96;
-      request.adaptive = true;
-      if (target) {
-        request.target_error = 0.1;
-        request.spp_given = false;
-      }
-      return run_render(request, report);
-    };
+    auto render = [&](const std::string& device, RenderReport& report) { return render_nee(device, target, true, report); };
     RenderReport one_report, two_report;
     const Film one = render("0", one_report);
     const Film two = render("all", two_report);

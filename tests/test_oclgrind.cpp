@@ -218,20 +218,23 @@ TEST_P(OclgrindVariant, NoFindingsAndThePoclImage) {
 // pixel 12 on: a range that starts mid-image, which the single-device variants' whole-pass
 // launches do not exercise). Were those pixels wrong, at most 98.4% of the values could agree:
 // the 99% bound would fail.
+// The diffuse scene at this size and spp, seed kSeed, on `device`.
+RenderRequest diffuse_request(const std::string& device, int width, int height, int64_t spp, Sampler sampler) {
+  RenderRequest request;
+  request.use_kernel_cache = false;
+  request.scene = load_book_scene("diffuse");
+  request.scene.settings.width = width;
+  request.scene.settings.height = height;
+  request.scene.settings.spp = spp;
+  request.scene.settings.seed = kSeed;
+  request.scene.settings.sampler = sampler;
+  request.device = device;
+  return request;
+}
+
 TEST(OclgrindMixed, PoclAndOclgrindShareOneFilm) {
   REQUIRE_OCLGRIND();
-  auto request_on = [](const std::string& device) {
-    RenderRequest request;
-    request.use_kernel_cache = false;
-    request.scene = load_book_scene("diffuse");
-    request.scene.settings.width = 32;
-    request.scene.settings.height = 24;
-    request.scene.settings.spp = 16;
-    request.scene.settings.seed = kSeed;
-    request.scene.settings.sampler = Sampler::Grid;
-    request.device = device;
-    return request;
-  };
+  auto request_on = [](const std::string& device) { return diffuse_request(device, 32, 24, 16, Sampler::Grid); };
   RenderReport mixed_report, pocl_report;
   StderrCapture capture("render");
   const Film mixed = run_render(request_on("cpu,oclgrind"), mixed_report);
@@ -265,21 +268,13 @@ TEST(OclgrindAdaptive, SlottedPassesInBothForms) {
   for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
     SCOPED_TRACE(execution_form_name(form));
     auto request_on = [form](const std::string& device) {
-      RenderRequest request;
-      request.use_kernel_cache = false;
-      request.scene = load_book_scene("diffuse");
-      request.scene.settings.width = kWidth;
-      request.scene.settings.height = kHeight;
-      request.scene.settings.spp = 20;
-      request.scene.settings.seed = kSeed;
-      request.scene.settings.sampler = Sampler::Jitter;
+      RenderRequest request = diffuse_request(device, kWidth, kHeight, 20, Sampler::Jitter);
       request.scene.settings.estimator = "nee";
       request.adaptive = true;
       request.form = form;
       request.megakernel_loop = MegakernelLoop::Lockstep;
       request.launch_target_s = 0;
       request.paths_in_flight = 64;
-      request.device = device;
       return request;
     };
     RenderReport oclgrind_report, pocl_report;
