@@ -2,8 +2,9 @@
 // assimp's parsers: the input is decoded into a synthetic aiScene -- up to 8 meshes of up to 64
 // vertices (each coordinate an arbitrary float or one of NaN, +-Inf, 0, -0, the smallest
 // denormal, FLT_MAX), normals present or not, up to 64 faces of 0 to 5 indices each, the indices
-// either in range or any 32-bit value -- which goes through check_assimp_vertices and
-// mesh_from_assimp as parse_mesh_file sends assimp's scene, and an accepted mesh through
+// either in range or any 32-bit value, any declared primitive types -- which goes through
+// declare_primitive_types (after which the declared types must be exactly the faces' own),
+// check_assimp_vertices and mesh_from_assimp as parse_mesh_file sends assimp's scene, and an accepted mesh through
 // placement (mesh_contract.h). MeshFileError is the normal refusal; another exception, a crash,
 // a sanitizer report or a broken contract is a finding. The aiScene honours what assimp's
 // validation guarantees (assimp_mesh.h) and nothing more.
@@ -41,6 +42,7 @@ aiVector3D vector(FuzzedDataProvider& in) {
 // One mesh as aiMesh's destructor expects to free it (new[] arrays).
 aiMesh* decode_mesh(FuzzedDataProvider& in) {
   auto mesh = std::make_unique<aiMesh>();
+  mesh->mPrimitiveTypes = in.ConsumeIntegralInRange<unsigned>(0, 15);  // what a reader may have claimed
   mesh->mNumVertices = in.ConsumeIntegralInRange<unsigned>(0, 64);
   const bool normals = in.ConsumeBool();
   if (mesh->mNumVertices > 0) {
@@ -65,6 +67,22 @@ aiMesh* decode_mesh(FuzzedDataProvider& in) {
   return mesh.release();
 }
 
+// After declare_primitive_types: a type is declared if and only if a face of that arity exists.
+void check_declared_types(const aiScene& scene) {
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    const aiMesh& m = *scene.mMeshes[i];
+    unsigned seen = 0;
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const unsigned n = m.mFaces[f].mNumIndices;
+      if (n >= 4) seen |= aiPrimitiveType_POLYGON;
+      if (n == 3) seen |= aiPrimitiveType_TRIANGLE;
+      if (n == 2) seen |= aiPrimitiveType_LINE;
+      if (n == 1) seen |= aiPrimitiveType_POINT;
+    }
+    if (seen != m.mPrimitiveTypes) clpt_fuzz::finding(kHarness, "declared primitive types differ from the faces'");
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -76,6 +94,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (unsigned i = 0; i < scene.mNumMeshes; ++i) scene.mMeshes[i] = decode_mesh(in);
   }
   try {
+    clpt::declare_primitive_types(scene);
+    check_declared_types(scene);
     clpt::check_assimp_vertices(scene);
     const clpt::MeshFileContents contents = clpt::mesh_from_assimp(scene);
     clpt_fuzz::check_accepted_mesh(kHarness, contents.mesh);
