@@ -88,7 +88,10 @@ struct Builder {
 
   uint32_t push_node(const BvhBox& box) { return push_bvh_node(out, box); }
 
-  void make_leaf(uint32_t node, size_t begin, size_t end) { make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end); }
+  // A leaf over [begin, end), all of one kind.
+  void make_leaf(uint32_t node, size_t begin, size_t end) {
+    make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end);
+  }
 
   // The best binned split of [begin, end): returns the position of the first primitive of the
   // right side after partitioning, or `begin` when no split beats a leaf (or none exists).

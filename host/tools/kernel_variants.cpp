@@ -48,15 +48,15 @@ Material glass_ball() {  // the glass scene's right ball
   return m;
 }
 
-// A mirror octahedron standing on the diffuse room's floor between the balls: triangles, so
+// A mirror octahedron just above the diffuse room's floor between the balls: triangles, so
 // the kernel traverses a hierarchy with triangle leaves, and a mirror.
 TriangleMesh mirror_octahedron() {
   TriangleMesh m;
   m.name = "variant_octahedron";
   m.material.type = MaterialType::Mirror;
   m.material.reflectance = {0.9, 0.9, 0.9};
-  const Vec3 centre = {50, 10, 62};
-  const double r = 9;
+  const Vec3 centre = {0, 0.8, 1.5};  // between the balls at x = -2 and 2, in front of them
+  const double r = 0.7;
   for (int axis = 0; axis < 3; ++axis)
     for (double side : {-1.0, 1.0}) {
       Vec3 p = centre;
@@ -81,8 +81,8 @@ std::vector<Sphere> pebbles() {
   for (int i = 0; i < 12; ++i) {
     Sphere s;
     s.name = "variant_pebble" + std::to_string(i);
-    s.center = {12.0 + 7.0 * i, 3, 110.0 + 3.0 * (i % 3)};
-    s.radius = 3;
+    s.center = {-2.0 + 0.35 * i, 0.15, 2.6 + 0.3 * (i % 3)};  // a row on the floor, in view
+    s.radius = 0.15;
     s.material.type = MaterialType::Lambertian;
     s.material.reflectance = {0.2 + 0.05 * (i % 4), 0.5, 0.75 - 0.05 * (i % 5)};
     out.push_back(s);
