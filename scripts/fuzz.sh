@@ -3,8 +3,9 @@
 # UBSan): builds build-fuzz with clang and CLPT_FUZZ=ON, then runs tests/fuzz/fuzz_scene_loader
 # (seeds: scenes/ and tests/scenes/bad/; run in tests/scenes/bad so that the seeds' mesh files
 # resolve), tests/fuzz/fuzz_mesh_file (seeds: tests/scenes/meshes/, tests/scenes/bad/meshes/ and
-# assimp-testmodels' small OBJ, PLY and STL files, each behind its file-type byte) and
-# tests/fuzz/fuzz_options (seeds: a few command lines) on working corpora kept in build-fuzz, so
+# assimp-testmodels' small OBJ, PLY and STL files, each behind its file-type byte),
+# tests/fuzz/fuzz_assimp_mesh (clpt's handling of synthetic aiScenes; no seeds, no dictionary:
+# its input is binary) and tests/fuzz/fuzz_options (seeds: a few command lines) on working corpora kept in build-fuzz, so
 # nothing is written into the source tree.
 #   scripts/fuzz.sh [SECONDS]     fuzz each harness for SECONDS (default 60)
 #   scripts/fuzz.sh --runs N      fuzz N inputs each
@@ -29,7 +30,7 @@ clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
 # The harness needs neither OpenImageIO nor the test suite; only the fuzz target is built.
 cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCLPT_FUZZ=ON -DCLPT_BUILD_TESTS=OFF -DCLPT_WITH_OIIO=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_mesh_file fuzz_options
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_mesh_file fuzz_assimp_mesh fuzz_options
 
 # Leaks inside assimp are the library's (tests/fuzz/lsan.supp); clpt's own stay findings.
 export LSAN_OPTIONS="suppressions=$CLPT_ROOT/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
@@ -39,7 +40,8 @@ mkdir -p "$findings"
 failed=0
 
 # fuzz_target NAME DICT SEED...: runs tests/fuzz/NAME on its working corpus in build-fuzz (the
-# seeds join it; it keeps what earlier runs learnt) and reports inputs tried and findings.
+# seeds join it; it keeps what earlier runs learnt) and reports inputs tried and findings; DICT
+# "-" for none.
 # first_frame_is_assimp LOG: the first stack frame after the last sanitizer or libFuzzer error
 # report that names assimp or clpt names assimp.
 first_frame_is_assimp() {
@@ -50,7 +52,8 @@ first_frame_is_assimp() {
 }
 
 fuzz_target() {
-  local name=$1 dict=$2
+  local name=$1 dict=$2 dict_option=()
+  [[ $dict == - ]] || dict_option=(-dict="$dict")
   shift 2
   local corpus=$work/corpus/$name log=$work/$name.log stamp=$work/.started-$name status=0
   mkdir -p "$corpus"
@@ -61,7 +64,7 @@ fuzz_target() {
   clpt_log "fuzzing $name (${limit[*]}); log: $log"
   # -timeout: an input taking over 10 s is a finding (parsing takes milliseconds).
   (cd "$CLPT_ROOT/tests/scenes/bad" &&
-   "$build/tests/fuzz/$name" "${limit[@]}" -dict="$dict" -max_len=8192 -timeout=10 \
+   "$build/tests/fuzz/$name" "${limit[@]}" "${dict_option[@]}" -max_len=8192 -timeout=10 \
       -print_final_stats=1 -artifact_prefix="$findings/$name-" "${extra[@]}" "$corpus") >"$log" 2>&1 || status=$?
   local runs secs new=()
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s += $2} END {print s + 0}' || true)
@@ -113,5 +116,6 @@ done
 fuzz_target fuzz_scene_loader "$CLPT_ROOT/tests/fuzz/scene.dict" \
     "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml
 fuzz_target fuzz_mesh_file "$CLPT_ROOT/tests/fuzz/mesh.dict" "$mesh_seeds"/*
+fuzz_target fuzz_assimp_mesh -
 fuzz_target fuzz_options "$CLPT_ROOT/tests/fuzz/options.dict" "$option_seeds"/*
 exit $failed

@@ -2,7 +2,9 @@
 # clpt bench end to end: a tiny matrix (both forms, both megakernel loops) writes a table and a
 # JSON holding every field, passes
 # against its own results as baseline, and fails (exit 1, REGRESSION) against a baseline that
-# claims 1000 times the speed.
+# claims 1000 times the speed. --bvh-builders: an unknown builder is refused (exit 2, naming the
+# option); the Cornell box's rows report their hierarchy and builder, one row per builder (clpt's,
+# and Embree's two in a build with Embree), each with its own key.
 #   bench_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -euo pipefail
 clpt=$1 src=$2 work=$3
@@ -42,4 +44,29 @@ if "$clpt" bench "${common[@]}" --baseline "$work/faster.json" --tolerance 10 > 
   echo "FAIL: a baseline 1000x faster did not fail"; exit 1
 fi
 test "$(grep -c REGRESSION "$work/slower.txt")" -eq 3
-echo "bench CLI: table, JSON fields, baseline pass and regression all as expected"
+
+status=0
+"$clpt" bench --bvh-builders nosuch --devices cpu > /dev/null 2> "$work/builder.err" || status=$?
+test "$status" -eq 2 || { echo "FAIL: --bvh-builders nosuch exited $status, not 2"; exit 1; }
+grep -q -- "--bvh-builders: unknown hierarchy builder 'nosuch'" "$work/builder.err" || { cat "$work/builder.err"; exit 1; }
+builders=clpt
+if "$clpt" bench --bvh-builders embree --scenes scenes/diffuse.toml --width 4 --height 4 --spp 1 --warmup 0 \
+       --repeat 1 --devices cpu --forms megakernel > /dev/null 2> "$work/embree.err"; then
+  builders=clpt,embree,embree-1thread
+else
+  grep -q "built without Embree" "$work/embree.err" || { cat "$work/embree.err"; exit 1; }
+fi
+"$clpt" bench --scenes scenes/cornell-box.toml --bvh-builders "$builders" --width 16 --height 16 --spp 1 --warmup 0 \
+    --repeat 1 --devices cpu --forms megakernel --json "$work/mesh.json" > "$work/mesh.txt"
+python3 - "$work/mesh.json" "$builders" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))["rows"]
+builders = sys.argv[2].split(",")
+assert [r["bvh_builder"] for r in rows] == builders, rows
+assert len({r["key"] for r in rows}) == len(rows), rows
+for r in rows:
+    assert r["triangles"] == 32 and r["bvh_nodes"] > 0 and r["bvh_depth"] > 0, r
+    assert r["device_bytes_per_triangle"] > 0 and r["bvh_build_s"] >= 0, r
+PY
+test "$(grep -c "hierarchy: 32 triangles" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$builders" | wc -l)"
+echo "bench CLI: table, JSON fields, baseline pass and regression, hierarchy builders all as expected"

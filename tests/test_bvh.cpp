@@ -1,5 +1,6 @@
 // The bounding volume hierarchy and the triangle test (scene/bvh_build.cpp, kernels/bvh.cl,
-// kernels/triangle.cl): the host's tree is well formed; on the device, the hierarchy's closest hit
+// kernels/triangle.cl): the host's tree is well formed, from clpt's builder and, in a build with
+// Embree, from Embree's (scene/bvh_embree.cpp); on the device, the hierarchy's closest hit
 // equals testing every primitive, over meshes, spheres in the hierarchy and both mixed; rays aimed
 // at the shared edges and vertices of closed meshes never escape them (watertightness); shadow
 // rays' any-hit answers agree with closest-hit distances.
@@ -131,9 +132,17 @@ std::vector<Scene> comparison_scenes() {
   return scenes;
 }
 
+// clpt's builder, and Embree's when this build has it.
+std::vector<BvhBuilder> builders_here() {
+  if (!embree_available()) return {BvhBuilder::Clpt};
+  return {BvhBuilder::Clpt, BvhBuilder::Embree, BvhBuilder::EmbreeOneThread};
+}
+
 TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
+  for (BvhBuilder builder : builders_here())
   for (const Scene& scene : comparison_scenes()) {
-    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    SCOPED_TRACE(bvh_builder_name(builder));
+    const DeviceScene ds = make_device_scene(scene, 4, 3, Precision::Robust, builder);
     const Bvh& bvh = ds.bvh;
     ASSERT_FALSE(bvh.nodes.empty());
     EXPECT_LE(bvh.depth, CLPT_BVH_STACK);
@@ -175,8 +184,10 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
 TEST(BvhTraversal, ClosestHitEqualsBruteForceOverEveryPrimitive) {
   std::mt19937 rng(11);
   int rays_total = 0, misses = 0, ties = 0;
+  for (BvhBuilder builder : builders_here())
   for (const Scene& scene : comparison_scenes()) {
-    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    SCOPED_TRACE(bvh_builder_name(builder));
+    const DeviceScene ds = make_device_scene(scene, 4, 3, Precision::Robust, builder);
     const std::vector<Ray> rays = random_rays(rng, 30000, 3.0);
     const auto bvh = query(scene, ds, rays, false);
     const auto brute = query(scene, ds, rays, true);

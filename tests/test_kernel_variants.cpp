@@ -47,6 +47,9 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
       EXPECT_EQ(p.features.glass, v.has_glass()) << v.name();
       EXPECT_EQ(p.features.estimator, v.estimator()) << v.name();
       EXPECT_EQ(p.features.russian_roulette, v.russian_roulette()) << v.name();
+      EXPECT_EQ(p.features.triangles, v.has_mesh()) << v.name();
+      EXPECT_EQ(p.features.spheres_in_bvh, v.has_mesh()) << v.name();
+      EXPECT_EQ(p.features.has_hierarchy(), v.has_mesh()) << v.name();
     }
     EXPECT_EQ(p.features.lockstep_group > 0,
               v.form() == ExecutionForm::Megakernel && v.megakernel_loop() == MegakernelLoop::Lockstep);

@@ -19,6 +19,7 @@ struct BenchOptions {
   std::vector<std::string> loops = {"auto"};
   std::vector<std::string> kernels = {"specialised"};
   std::vector<std::string> precisions = {"robust"};
+  std::vector<std::string> bvh_builders = {"clpt"};
   std::string sampler = "jitter";
   std::string json, baseline;
   double tolerance = 10;
@@ -38,6 +39,10 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.sampler = sampler_from_name(o.sampler).value();  // CLI11 checked the name
   config.precisions.clear();
   for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
+  config.bvh_builders.clear();
+  for (const std::string& b : o.bvh_builders) config.bvh_builders.push_back(parse_bvh_builder(b, "--bvh-builders"));
+  if (ranks.size() > 1 && (config.bvh_builders.size() > 1 || config.bvh_builders.front() != BvhBuilder::Clpt))
+    throw Error(ExitCode::Usage, "--bvh-builders: only clpt in an MPI job (its scaling renders as clpt render does)");
   if (config.devices.empty()) config.devices = {"best"};
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
@@ -82,6 +87,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "Sampler of every run (default jitter; the rows do not name it, so compare a --baseline "
                   "taken with the same one)")
       ->check(CLI::IsMember(sampler_names()));
+  cmd->add_option("--bvh-builders", o->bvh_builders,
+                  "Hierarchy builders: clpt (the default, what renders use), embree, embree-1thread (only in a "
+                  "build with Embree; docs/performance.md \"Traversal\")")
+      ->delimiter(',');
   cmd->add_option("--json", o->json, "Also write the results as JSON");
   cmd->add_option("--baseline", o->baseline, "Compare with a saved --json file; exit 1 on a regression");
   cmd->add_option("--tolerance", o->tolerance, "Allowed drop of median paths/s against --baseline, percent")

@@ -42,6 +42,31 @@ BvhBox sphere_box(const std::array<double, 3>& center, double radius) {
   return b;
 }
 
+uint32_t push_bvh_node(Bvh& bvh, const BvhBox& box) {
+  GpuBvhNode n{};
+  for (int k = 0; k < 3; ++k) {
+    n.lower[k] = box.lower[k];
+    n.upper[k] = box.upper[k];
+  }
+  bvh.nodes.push_back(n);
+  return static_cast<uint32_t>(bvh.nodes.size() - 1);
+}
+
+void make_bvh_leaf(Bvh& bvh, uint32_t node, const BvhPrimitive* begin, const BvhPrimitive* end) {
+  const bool spheres = begin->kind == PrimitiveKind::Sphere;
+  std::vector<uint32_t>& order = spheres ? bvh.sphere_order : bvh.triangle_order;
+  bvh.nodes[node].first = static_cast<uint32_t>(order.size());
+  bvh.nodes[node].count = static_cast<uint32_t>(end - begin) | (spheres ? CLPT_BVH_SPHERE_LEAF : 0u);
+  for (const BvhPrimitive* p = begin; p != end; ++p) order.push_back(p->index);
+}
+
+void note_bvh_depth(Bvh& bvh, int depth) {
+  bvh.depth = std::max(bvh.depth, depth);
+  if (depth > CLPT_BVH_STACK)
+    throw Error(ExitCode::BadScene, "the bounding volume hierarchy would be deeper than the kernels' traversal "
+                                    "stack of " + std::to_string(CLPT_BVH_STACK) + " levels");
+}
+
 namespace {
 
 struct Builder {
@@ -61,23 +86,11 @@ struct Builder {
     return b;
   }
 
-  uint32_t push_node(const BvhBox& box) {
-    GpuBvhNode n{};
-    for (int k = 0; k < 3; ++k) {
-      n.lower[k] = box.lower[k];
-      n.upper[k] = box.upper[k];
-    }
-    out.nodes.push_back(n);
-    return static_cast<uint32_t>(out.nodes.size() - 1);
-  }
+  uint32_t push_node(const BvhBox& box) { return push_bvh_node(out, box); }
 
   // A leaf over [begin, end), all of one kind.
   void make_leaf(uint32_t node, size_t begin, size_t end) {
-    const bool spheres = prims[begin].kind == PrimitiveKind::Sphere;
-    std::vector<uint32_t>& order = spheres ? out.sphere_order : out.triangle_order;
-    out.nodes[node].first = static_cast<uint32_t>(order.size());
-    out.nodes[node].count = static_cast<uint32_t>(end - begin) | (spheres ? CLPT_BVH_SPHERE_LEAF : 0u);
-    for (size_t i = begin; i < end; ++i) order.push_back(prims[i].index);
+    make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end);
   }
 
   // The best binned split of [begin, end): returns the position of the first primitive of the
@@ -145,10 +158,7 @@ struct Builder {
   }
 
   void build(size_t begin, size_t end, int depth) {
-    out.depth = std::max(out.depth, depth);
-    if (depth > CLPT_BVH_STACK)
-      throw Error(ExitCode::BadScene, "the bounding volume hierarchy would be deeper than the kernels' traversal "
-                                      "stack of " + std::to_string(CLPT_BVH_STACK) + " levels");
+    note_bvh_depth(out, depth);
     const BvhBox box = bounds(begin, end);
     const uint32_t node = push_node(box);
     size_t mid = split(begin, end, box);

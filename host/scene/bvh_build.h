@@ -50,6 +50,16 @@ struct Bvh {
 // SAH build of any real scene stays far below.
 Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options = {});
 
+// The steps every builder (this one, bvh_embree.h) writes the layout with, depth first:
+// push_bvh_node appends a node of box `box` and returns its index (an interior node's first child
+// must be pushed next, its `first` set to the second child's index and `count` to 0);
+// make_bvh_leaf makes `node` a leaf of [begin, end), which must be non-empty and of one kind,
+// appending their indices to the kind's order; note_bvh_depth records a node at `depth` (root 1)
+// and throws Error(ExitCode::BadScene) past CLPT_BVH_STACK.
+uint32_t push_bvh_node(Bvh& bvh, const BvhBox& box);
+void make_bvh_leaf(Bvh& bvh, uint32_t node, const BvhPrimitive* begin, const BvhPrimitive* end);
+void note_bvh_depth(Bvh& bvh, int depth);
+
 // The box of a sphere centred at `center` (camera-relative, double) with radius r, rounded
 // outwards to float so that it contains the sphere the kernels intersect.
 BvhBox sphere_box(const std::array<double, 3>& center, double radius);

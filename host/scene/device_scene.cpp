@@ -145,7 +145,7 @@ double ray_epsilon_for(const Camera& camera, Precision precision) {
   return 1e-5 * scale * length(sub(camera.look_at, camera.position));
 }
 
-DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision) {
+DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision, BvhBuilder builder) {
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
@@ -170,7 +170,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
       prims.push_back(prim);
     }
   }
-  out.bvh = build_bvh(prims);
+  out.bvh = build_bvh_with(builder, prims);
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
   if (spheres_in_bvh) {

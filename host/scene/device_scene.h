@@ -7,6 +7,7 @@
 #include "kernels/types.h"
 #include "kernels/kernel_options.h"
 #include "scene/bvh_build.h"
+#include "scene/bvh_builders.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -37,8 +38,10 @@ SurfaceFrame surface_frame(const Sphere& s, const Vec3& anchor);
 // n0 the outward normal there, both relative to the camera position. Then every float the
 // kernels see is of the size of distances inside the scene, never of a huge radius or a large
 // world coordinate.
-// `precision` sets the ray epsilon (ray_epsilon_for).
-DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision = Precision::Robust);
+// `precision` sets the ray epsilon (ray_epsilon_for); `builder` makes the hierarchy (only
+// `clpt bench --bvh-builders` passes another than clpt's own).
+DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision = Precision::Robust,
+                              BvhBuilder builder = BvhBuilder::Clpt);
 
 // How next-event estimation samples an emitter (RenderSettings::light_sampling).
 //   Cap:    uniformly by area over the part of it that no other sphere hides, found as the

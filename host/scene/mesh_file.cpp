@@ -1,7 +1,7 @@
 // Mesh files through assimp (Debian 12: libassimp-dev 5.2). assimp is asked to triangulate,
 // join identical vertices, bake node transforms into the vertices, split meshes by primitive type
 // and validate its own data structure; it is never asked to generate normals. Everything it
-// returns is checked here again before clpt uses it (see mesh_file.h).
+// returns is checked again (scene/assimp_mesh.cpp) before clpt uses it.
 #include "scene/mesh_file.h"
 
 #include <assimp/Importer.hpp>
@@ -11,78 +11,25 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <system_error>
+
+#include "scene/assimp_mesh.h"
 
 namespace clpt {
 namespace {
 
-// Joining identical vertices comes after clpt's finiteness check (parse_mesh_file): assimp's
-// joining merges a NaN vertex into another one, and the NaN would go unseen.
-constexpr unsigned kImportFlags = aiProcess_Triangulate | aiProcess_PreTransformVertices |
-                                  aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+// Triangulation comes after clpt has set each mesh's primitive types from its faces
+// (declare_primitive_types: assimp's own may claim polygons that are not there, and its
+// triangulation then aborts). Joining identical vertices comes after clpt's finiteness check
+// (parse_mesh_file): assimp's joining merges a NaN vertex into another one, and the NaN would go
+// unseen.
+constexpr unsigned kImportFlags = aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
+constexpr unsigned kTriangulateFlags = aiProcess_Triangulate | aiProcess_SortByPType;
 constexpr unsigned kJoinFlags = aiProcess_JoinIdenticalVertices;
-
-std::string vec3_text(const aiVector3D& v) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "[%.9g, %.9g, %.9g]", double(v.x), double(v.y), double(v.z));
-  return buffer;
-}
-
-bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-std::string element(const char* what, size_t index, unsigned mesh) {
-  return std::string(what) + " " + std::to_string(index) + " of mesh " + std::to_string(mesh);
-}
-
-size_t triangle_count(const aiMesh& m) {
-  return size_t(std::count_if(m.mFaces, m.mFaces + m.mNumFaces, [](const aiFace& f) { return f.mNumIndices == 3; }));
-}
-
-// Every vertex and normal finite, every normal non-zero; the indices are those of the file's
-// vertices as assimp numbers them before joining identical ones.
-void check_vertices(const aiMesh& m, unsigned index) {
-  for (unsigned v = 0; v < m.mNumVertices; ++v) {
-    if (!finite(m.mVertices[v]))
-      throw MeshFileError(element("vertex", v, index) + " is not finite (got " + vec3_text(m.mVertices[v]) + ")");
-    if (!m.HasNormals()) continue;
-    const aiVector3D& n = m.mNormals[v];
-    if (!finite(n) || (n.x == 0 && n.y == 0 && n.z == 0))
-      throw MeshFileError(element("normal", v, index) + " is zero or not finite (got " + vec3_text(n) + ")");
-  }
-}
-
-// Appends one assimp mesh's triangles and vertices to `out` (vertices renumbered after those
-// already there); `with_normals` says whether the merged mesh keeps normals. Faces of one or two
-// indices (points, lines) are left out: the caller counts them.
-void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& out) {
-  const size_t base = out.positions.size();
-  if (base + m.mNumVertices > std::numeric_limits<uint32_t>::max())
-    throw MeshFileError("more than 2^32 - 1 vertices (clpt's triangles index vertices with 32 bits)");
-  for (unsigned v = 0; v < m.mNumVertices; ++v) {
-    const aiVector3D& p = m.mVertices[v];
-    out.positions.push_back({double(p.x), double(p.y), double(p.z)});
-    if (with_normals) out.normals.push_back({double(m.mNormals[v].x), double(m.mNormals[v].y), double(m.mNormals[v].z)});
-  }
-  for (unsigned f = 0; f < m.mNumFaces; ++f) {
-    const aiFace& face = m.mFaces[f];
-    if (face.mNumIndices != 3) continue;
-    std::array<uint32_t, 3> t{};
-    for (int k = 0; k < 3; ++k) {
-      // assimp's validation checks indices too; this keeps clpt safe should a version not.
-      if (face.mIndices[k] >= m.mNumVertices)
-        throw MeshFileError(element("face", f, index) + " uses vertex " + std::to_string(face.mIndices[k]) +
-                            " of " + std::to_string(m.mNumVertices));
-      t[size_t(k)] = static_cast<uint32_t>(base + face.mIndices[k]);
-    }
-    out.triangles.push_back(t);
-  }
-}
 
 // Where the PLY header's end_header line ends (a line starting with the word, followed by
 // whitespace or the end of the file), or npos.
@@ -189,27 +136,15 @@ MeshFileContents parse_mesh_file(std::string_view bytes, const std::string& exte
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, extension.c_str());
   if (!scene) throw MeshFileError(std::string("assimp cannot read it: ") + importer.GetErrorString());
-  for (unsigned i = 0; i < scene->mNumMeshes; ++i) check_vertices(*scene->mMeshes[i], i);
+  // The importer owns the scene and its post-processing steps change it in place; the const of
+  // ReadFileFromMemory's result is only a view.
+  declare_primitive_types(const_cast<aiScene&>(*scene));
+  scene = importer.ApplyPostProcessing(kTriangulateFlags);
+  if (!scene) throw MeshFileError(std::string("assimp cannot triangulate it: ") + importer.GetErrorString());
+  check_assimp_vertices(*scene);
   scene = importer.ApplyPostProcessing(kJoinFlags);
   if (!scene) throw MeshFileError(std::string("assimp cannot join its vertices: ") + importer.GetErrorString());
-  MeshFileContents out;
-  std::vector<unsigned> triangle_meshes;
-  size_t skipped = 0;
-  for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
-    const size_t triangles = triangle_count(*scene->mMeshes[i]);
-    skipped += scene->mMeshes[i]->mNumFaces - triangles;
-    if (triangles > 0) triangle_meshes.push_back(i);
-  }
-  if (skipped > 0)
-    out.warnings.push_back(std::to_string(skipped) + " point or line primitive(s) skipped (only triangles render)");
-  const auto has_normals = [&](unsigned i) { return scene->mMeshes[i]->HasNormals(); };
-  const bool with_normals =
-      !triangle_meshes.empty() && std::all_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals);
-  if (!with_normals && std::any_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals))
-    out.warnings.push_back("normals ignored: only some of the file's meshes have them (geometric normals shade)");
-  for (unsigned i : triangle_meshes) append_mesh(*scene->mMeshes[i], i, with_normals, out.mesh);
-  if (out.mesh.triangles.empty()) throw MeshFileError("the mesh file has no triangles");
-  return out;
+  return mesh_from_assimp(*scene);
 }
 
 }  // namespace clpt

@@ -1,6 +1,7 @@
-// Mesh files (OBJ, PLY, glTF binary, STL) read through assimp: the only file in clpt that sees
-// assimp's types. What comes back is plain vertices and triangles (scene/mesh_placement.h
-// LocalMesh) that clpt has checked itself: finite positions, non-zero normals, indices in range.
+// Mesh files (OBJ, PLY, glTF binary, STL) read through assimp: with scene/assimp_mesh.h (the
+// checks and conversion of what assimp returns), the only files in clpt that see assimp's
+// types. What comes back is plain vertices and triangles (scene/mesh_placement.h LocalMesh)
+// that clpt has checked itself: finite positions, non-zero normals, indices in range.
 // The loader (scene_loader.cpp) adds the [[mesh]] table's position to every message.
 #pragma once
 

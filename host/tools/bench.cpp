@@ -65,7 +65,7 @@ RenderRequest cell_request(const Scene& scene, const BenchConfig& c, ExecutionFo
 // then twice more, the second timed (the driver's cache, clpt's own off), warms up, times
 // `repeat` passes of c.spp samples per pixel.
 BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& device, ExecutionForm form,
-                    bool generic, Precision precision, size_t local_size, MegakernelLoop loop) {
+                    bool generic, Precision precision, size_t local_size, MegakernelLoop loop, BvhBuilder builder) {
   BenchRow row;
   row.scene = scene.file;
   row.form = execution_form_name(form);
@@ -76,7 +76,8 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   const RenderRequest request = cell_request(scene, c, form, generic, precision, local_size, loop);
   const RenderPlan plan = plan_render(request, {device});
   const DevicePlan& planned = plan.devices.front();
-  const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision);
+  const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision, builder);
+  row.bvh_builder = bvh_builder_name(builder);
   row.triangles = ds.triangles.size();
   row.hierarchy_spheres = ds.bvh.sphere_order.size();
   row.bvh_nodes = ds.bvh.nodes.size();
@@ -173,12 +174,13 @@ std::vector<RankRate> rank_scaling(const BenchConfig& c, RenderRequest request, 
 
 // One row of the matrix: bench_cell; in an MPI job bench_cell on rank 0 alone, then the scaling.
 BenchRow bench_row(const BenchConfig& c, const Scene& scene, const DeviceInfo& device, ExecutionForm form,
-                   bool generic, Precision precision, size_t local_size, MegakernelLoop loop) {
-  if (!c.ranks || c.ranks->size() == 1) return bench_cell(c, scene, device, form, generic, precision, local_size, loop);
+                   bool generic, Precision precision, size_t local_size, MegakernelLoop loop, BvhBuilder builder) {
+  if (!c.ranks || c.ranks->size() == 1)
+    return bench_cell(c, scene, device, form, generic, precision, local_size, loop, builder);
   RankGroup& group = *c.ranks;
   BenchRow row;
   on_some_ranks(group, group.coordinator(),
-                [&] { row = bench_cell(c, scene, device, form, generic, precision, local_size, loop); });
+                [&] { row = bench_cell(c, scene, device, form, generic, precision, local_size, loop, builder); });
   row.ranks = rank_scaling(c, cell_request(scene, c, form, generic, precision, local_size, loop), device, group);
   return row;
 }
@@ -193,7 +195,7 @@ std::string format_rate(const Spread& s) {
 
 std::string BenchRow::key() const {
   return scene + "|" + form + (loop.empty() ? "" : ":" + loop) + "|" + kernel + "|" + precision + "|" +
-         estimator + "|" + device + "|" + std::to_string(local_size);
+         estimator + "|" + device + "|" + std::to_string(local_size) + (bvh_builder == "clpt" ? "" : "|bvh=" + bvh_builder);
 }
 
 std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
@@ -218,15 +220,17 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
               // The loop is the megakernel's: the wavefront runs once, whatever the list.
               if (form == ExecutionForm::Wavefront && loop != c.megakernel_loops.front()) continue;
               for (bool generic : c.generic)
-                for (size_t local_size : c.local_sizes) {
-                  if (show_progress)
-                    std::fprintf(stderr, "bench: %s, %s, %s, %s%s%s, %s kernel, local size %zu, %s\n", file.c_str(),
-                                 scene.settings.estimator.c_str(), precision_name(precision),
-                                 execution_form_name(form), form == ExecutionForm::Megakernel ? " loop " : "",
-                                 form == ExecutionForm::Megakernel ? megakernel_loop_name(loop) : "",
-                                 generic ? "generic" : "specialised", local_size, device->name.c_str());
-                  rows.push_back(bench_row(c, scene, *device, form, generic, precision, local_size, loop));
-                }
+                for (size_t local_size : c.local_sizes)
+                  for (BvhBuilder builder : c.bvh_builders) {
+                    if (show_progress)
+                      std::fprintf(stderr, "bench: %s, %s, %s, %s%s%s, %s kernel, local size %zu, %s builder, %s\n",
+                                   file.c_str(), scene.settings.estimator.c_str(), precision_name(precision),
+                                   execution_form_name(form), form == ExecutionForm::Megakernel ? " loop " : "",
+                                   form == ExecutionForm::Megakernel ? megakernel_loop_name(loop) : "",
+                                   generic ? "generic" : "specialised", local_size, bvh_builder_name(builder),
+                                   device->name.c_str());
+                    rows.push_back(bench_row(c, scene, *device, form, generic, precision, local_size, loop, builder));
+                  }
             }
         }
       }
@@ -261,10 +265,11 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.bvh_nodes > 0) {
       std::snprintf(line, sizeof line,
-                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s on the host; "
-                    "%.1f device B/triangle\n",
+                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s on the host "
+                    "(%s builder); %.1f device B/triangle\n",
                     static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
-                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.device_bytes_per_triangle);
+                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s,
+                    r.bvh_builder.c_str(), r.device_bytes_per_triangle);
       o << line;
     }
     for (const RankRate& k : r.ranks) {
@@ -294,7 +299,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"paths_in_flight", r.paths_in_flight},
                           {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
-                          {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
+                          {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
                           {"paths_per_s", spread(r.paths_per_s)},
                           {"segments_per_s", spread(r.segments_per_s)},

@@ -11,6 +11,7 @@
 
 #include "kernels/kernel_options.h"
 #include "render/renderer.h"
+#include "scene/bvh_builders.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -31,6 +32,9 @@ struct BenchConfig {
   int warmup = 1, repeat = 5;
   uint32_t paths_in_flight = 0;                // wavefront; 0: the device's default
   Sampler sampler = Sampler::Jitter;           // one for the whole matrix (rows do not name it)
+  // Who builds the hierarchy of each row's device scene (a plain bench only: the MPI scaling
+  // renders as `clpt render` does, with clpt's own builder).
+  std::vector<BvhBuilder> bvh_builders = {BvhBuilder::Clpt};
   // The ranks of an MPI job; null or a group of one: a plain bench. A larger group: every rank
   // calls run_bench with the same config and must resolve the same matrix (as many --devices,
   // the same fp64 support); rank 0 times each row alone, the others idle, then the row's render
@@ -60,6 +64,7 @@ struct BenchRow {
   double build_cold_s = 0, build_cached_s = 0;
   // The bounding volume hierarchy (none: nodes 0): what it holds, its host build time and the
   // device bytes its triangles take (GpuTriangle + GpuTriangleShading + the nodes, per triangle).
+  std::string bvh_builder = "clpt";  // bvh_builder_name()
   uint64_t triangles = 0, hierarchy_spheres = 0, bvh_nodes = 0;
   int bvh_depth = 0;
   double bvh_build_s = 0;
@@ -67,7 +72,7 @@ struct BenchRow {
   Spread paths_per_s, segments_per_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
   std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty
-  std::string key() const;  // identifies the row across runs (for --baseline)
+  std::string key() const;  // identifies the row across runs (for --baseline); names a builder other than clpt
 };
 
 // In an MPI job the rows are rank 0's (the other ranks' rows hold no figures); collective.

@@ -10,7 +10,7 @@ namespace clpt {
 namespace {
 
 // Dimension positions in KernelVariant::choice.
-enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kDimCount };
+enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry, kDimCount };
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
 using Pair = std::tuple<int, int, int, int>;
@@ -48,6 +48,48 @@ Material glass_ball() {  // the glass scene's right ball
   return m;
 }
 
+// A mirror octahedron just above the diffuse room's floor between the balls: triangles, so
+// the kernel traverses a hierarchy with triangle leaves, and a mirror.
+TriangleMesh mirror_octahedron() {
+  TriangleMesh m;
+  m.name = "variant_octahedron";
+  m.material.type = MaterialType::Mirror;
+  m.material.reflectance = {0.9, 0.9, 0.9};
+  const Vec3 centre = {0, 0.8, 1.5};  // between the balls at x = -2 and 2, in front of them
+  const double r = 0.7;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double side : {-1.0, 1.0}) {
+      Vec3 p = centre;
+      p[size_t(axis)] += side * r;
+      m.positions.push_back(p);
+    }
+  // Vertices 0/1: -x/+x, 2/3: -y/+y, 4/5: -z/+z; one face per octant, counter-clockwise outside.
+  for (uint32_t x : {0u, 1u})
+    for (uint32_t y : {2u, 3u})
+      for (uint32_t z : {4u, 5u}) {
+        const bool flip = ((x == 1) + (y == 3) + (z == 5)) % 2 == 0;
+        m.triangles.push_back(flip ? std::array<uint32_t, 3>{x, z, y} : std::array<uint32_t, 3>{x, y, z});
+      }
+  return m;
+}
+
+// Small Lambertian pebbles along the room's floor: with them the scene has more than
+// kMaxLoopSpheres spheres, so the small ones (and the book's balls) become hierarchy primitives
+// beside the triangles while the walls and the light stay in the loop (loop_spheres).
+std::vector<Sphere> pebbles() {
+  std::vector<Sphere> out;
+  for (int i = 0; i < 12; ++i) {
+    Sphere s;
+    s.name = "variant_pebble" + std::to_string(i);
+    s.center = {-2.0 + 0.35 * i, 0.15, 2.6 + 0.3 * (i % 3)};  // a row on the floor, in view
+    s.radius = 0.15;
+    s.material.type = MaterialType::Lambertian;
+    s.material.reflectance = {0.2 + 0.05 * (i % 4), 0.5, 0.75 - 0.05 * (i % 5)};
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace
 
 const std::vector<VariantDimension>& kernel_variant_dimensions() {
@@ -60,8 +102,9 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"scene-loops", {"unrolled", "rolled"}},
       {"phong", {"no-phong", "phong"}},
       {"glass", {"no-glass", "glass"}},
+      {"geometry", {"spheres", "mesh"}},
   };
-  static_assert(kDimCount == 8, "one entry per Dim");
+  static_assert(kDimCount == 9, "one entry per Dim");
   return dims;
 }
 
@@ -82,6 +125,7 @@ SceneLoops KernelVariant::scene_loops() const {
 }
 bool KernelVariant::has_phong() const { return choice[kPhong] == 1; }
 bool KernelVariant::has_glass() const { return choice[kGlass] == 1; }
+bool KernelVariant::has_mesh() const { return choice[kGeometry] == 1; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -146,6 +190,10 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   if (!left || !right)
     throw Error(ExitCode::Failure, "kernel variants are built from the book's diffuse scene "
                                    "(spheres named left_ball and right_ball); this scene lacks them");
+  if (variant.has_mesh()) {
+    scene.meshes.push_back(mirror_octahedron());
+    for (const Sphere& s : pebbles()) scene.spheres.push_back(s);
+  }
   scene.settings.estimator = estimator_name(variant.estimator());
   scene.settings.rr_from = variant.russian_roulette() ? 2 : -1;
   return scene;

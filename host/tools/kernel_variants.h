@@ -1,8 +1,8 @@
 // The covering set of kernel variants: a few kernel configurations that together contain every
 // value of every dimension that changes what a kernel compiles (execution form and megakernel
 // loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
-// unrolled or rolled, each material present or absent) and every pair of values of two
-// dimensions. Two test tiers use the same set:
+// unrolled or rolled, each material present or absent, spheres alone or a mesh and a hierarchy)
+// and every pair of values of two dimensions. Two test tiers use the same set:
 //   oclgrind  renders each on Oclgrind with its memory, race and API checks, and against PoCL
 //   gpucc     compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
 //             (`clpt kernels emit` writes their sources and build options)
@@ -41,6 +41,9 @@ struct KernelVariant {
   SceneLoops scene_loops() const;  // Unrolled or Rolled (a generic kernel has no fixed loops)
   bool has_phong() const;  // the scene has a Phong ball
   bool has_glass() const;  // the scene has a glass ball
+  // The scene has a mesh (a mirror octahedron) and 12 pebbles more: the kernel traverses a
+  // hierarchy of triangles and spheres (with the book's balls) instead of only the sphere loop.
+  bool has_mesh() const;
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
@@ -58,7 +61,9 @@ std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& varia
 
 // The variant's scene from the book's diffuse scene (scenes/diffuse.toml): its left ball becomes
 // the specular scene's Phong material and its right ball the glass scene's glass when the
-// variant has them; its estimator and Russian roulette (from bounce 2) are set from the variant.
+// variant has them; a mesh variant adds a mirror octahedron on the floor and 12 pebbles (so that
+// triangles and spheres are hierarchy primitives); its estimator and Russian roulette (from
+// bounce 2) are set from the variant.
 // Throws Error(Failure) when the scene has no spheres named left_ball and right_ball.
 Scene variant_scene(const Scene& diffuse, const KernelVariant& variant);
 

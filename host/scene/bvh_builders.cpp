@@ -1,0 +1,53 @@
+// The choice of hierarchy builder (bvh_builders.h).
+#include "scene/bvh_builders.h"
+
+#include "util/error.h"
+
+#ifdef CLPT_WITH_EMBREE
+#include "scene/bvh_embree.h"
+#endif
+
+namespace clpt {
+
+const char* bvh_builder_name(BvhBuilder builder) {
+  switch (builder) {
+    case BvhBuilder::Embree: return "embree";
+    case BvhBuilder::EmbreeOneThread: return "embree-1thread";
+    case BvhBuilder::Clpt: break;
+  }
+  return "clpt";
+}
+
+bool embree_available() {
+#ifdef CLPT_WITH_EMBREE
+  return true;
+#else
+  return false;
+#endif
+}
+
+BvhBuilder parse_bvh_builder(const std::string& name, const std::string& option) {
+  for (BvhBuilder b : {BvhBuilder::Clpt, BvhBuilder::Embree, BvhBuilder::EmbreeOneThread}) {
+    if (name != bvh_builder_name(b)) continue;
+    if (b != BvhBuilder::Clpt && !embree_available())
+      throw Error(ExitCode::Usage, option + " " + name + ": this clpt was built without Embree "
+                                   "(install libembree-dev and reconfigure with CMake)");
+    return b;
+  }
+  throw Error(ExitCode::Usage, option + ": unknown hierarchy builder '" + name +
+                                   "' (expected clpt, embree or embree-1thread)");
+}
+
+Bvh build_bvh_with(BvhBuilder builder, const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options) {
+#ifdef CLPT_WITH_EMBREE
+  if (builder != BvhBuilder::Clpt)
+    return build_bvh_embree(primitives, options, builder == BvhBuilder::EmbreeOneThread ? 1 : 0);
+#else
+  if (builder != BvhBuilder::Clpt)
+    throw Error(ExitCode::Usage, std::string("hierarchy builder ") + bvh_builder_name(builder) +
+                                     ": this clpt was built without Embree");
+#endif
+  return build_bvh(primitives, options);
+}
+
+}  // namespace clpt
