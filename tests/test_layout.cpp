@@ -37,7 +37,7 @@ TEST(StructLayout, HostMatchesDevice) {
   EXPECT_EQ(sizeof(GpuSphere), 96u);
   EXPECT_EQ(sizeof(GpuCamera), 48u);
   EXPECT_EQ(sizeof(GpuRenderParams), 112u);
-  EXPECT_EQ(sizeof(GpuLight), 32u);
+  EXPECT_EQ(sizeof(GpuLight), 48u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);
 }
 
