@@ -12,6 +12,7 @@
 //   KernelVariants/OclgrindVariant.*  every variant of covering_kernel_variants() rendered on
 //                       Oclgrind: no finding at all, and the image of the same request on PoCL
 //   OclgrindMixed.*     one render over PoCL and Oclgrind together
+//   OclgrindAreaLights.*  the Cornell box under nee (emitting triangles as lights) in both forms
 #include <gtest/gtest.h>
 
 #include <map>
@@ -254,6 +255,48 @@ TEST(OclgrindMixed, PoclAndOclgrindShareOneFilm) {
   std::printf("PoCL + Oclgrind against PoCL alone, same seed: %s\n", a.describe().c_str());
   EXPECT_GE(a.close_fraction, 0.99) << a.describe();
   EXPECT_LE(a.worst_mean_difference(), 1e-4) << a.describe();
+}
+
+// The kernel with triangle lights (CLPT_HAS_TRIANGLE_LIGHTS: nee on a scene with an emitting
+// mesh; the covering set's scene has none) on Oclgrind: the Cornell box at 11x9 (odd, as above),
+// 8 jittered samples, in the per-path megakernel (what a GPU runs) and the wavefront. No finding
+// at all, and the PoCL image of the same request: the same bound as the specialised robust
+// variants' (float rounding only; measured 2026-12-02: see the printed agreement).
+TEST(OclgrindAreaLights, CornellBoxNeeHasNoFindingsAndThePoclImage) {
+  REQUIRE_OCLGRIND();
+  for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+    const char* form_name = form == ExecutionForm::Megakernel ? "megakernel-path" : "wavefront";
+    auto request_on = [form](const std::string& device) {
+      RenderRequest request;
+      request.use_kernel_cache = false;
+      request.scene = load_book_scene("cornell-box");
+      request.scene.settings.width = 11;
+      request.scene.settings.height = 9;
+      request.scene.settings.spp = 8;
+      request.scene.settings.seed = kSeed;
+      request.scene.settings.sampler = Sampler::Jitter;
+      request.scene.settings.estimator = "nee";
+      request.form = form;
+      request.megakernel_loop = MegakernelLoop::PerPath;
+      request.launch_target_s = 0;  // one launch per pass (variant_request says why)
+      request.paths_in_flight = 64;
+      request.device = device;
+      return request;
+    };
+    RenderReport oclgrind_report, pocl_report;
+    StderrCapture capture("render");
+    const Film on_oclgrind = run_render(request_on("oclgrind"), oclgrind_report);
+    const OclgrindFindings findings = capture.finish();
+    EXPECT_TRUE(findings.clean()) << form_name << ": Oclgrind reported (" << capture.path() << "): " << findings.summary();
+    EXPECT_NE(oclgrind_report.device.find("simulator"), std::string::npos) << oclgrind_report.device;
+    EXPECT_EQ(oclgrind_report.paths, 11u * 9u * 8u);
+    const Film on_pocl = run_render(request_on("cpu"), pocl_report);
+    const SameSeedAgreement a = same_seed_agreement(on_oclgrind.mean_rgb(), on_pocl.mean_rgb());
+    std::printf("Cornell box, nee, %s: Oclgrind against PoCL, same seed: %s (%.1f s on Oclgrind)\n", form_name,
+                a.describe().c_str(), oclgrind_report.render_seconds);
+    EXPECT_GE(a.close_fraction, 0.9939) << form_name << ": " << a.describe();
+    EXPECT_LE(a.worst_mean_difference(), 1e-6) << form_name << ": " << a.describe();
+  }
 }
 
 std::string variant_test_name(const ::testing::TestParamInfo<KernelVariant>& info) {
