@@ -206,6 +206,15 @@ TEST_P(OclgrindVariant, NoFindingsAndThePoclImage) {
   EXPECT_LE(a.worst_mean_difference(), bound.mean_relative) << variant.name() << ": " << a.describe();
 }
 
+// A render of scenes/NAME.toml at w x h, spp samples of `sampler`, this file's seed, on `device`.
+RenderRequest small_request(const std::string& scene, int w, int h, int64_t spp, Sampler sampler,
+                            const std::string& device) {
+  RenderRequest request = scene_request(scene, w, h, kSeed, sampler);
+  request.scene.settings.spp = spp;
+  request.device = device;
+  return request;
+}
+
 // One render over two implementations at once, PoCL's CPU device and Oclgrind (`--device
 // cpu,oclgrind`: one film, each device with its own context and program): no Oclgrind finding,
 // both devices traced pixels, and the film is the PoCL-only film of the same request up to the
@@ -222,16 +231,7 @@ TEST_P(OclgrindVariant, NoFindingsAndThePoclImage) {
 TEST(OclgrindMixed, PoclAndOclgrindShareOneFilm) {
   REQUIRE_OCLGRIND();
   auto request_on = [](const std::string& device) {
-    RenderRequest request;
-    request.use_kernel_cache = false;
-    request.scene = load_book_scene("diffuse");
-    request.scene.settings.width = 32;
-    request.scene.settings.height = 24;
-    request.scene.settings.spp = 16;
-    request.scene.settings.seed = kSeed;
-    request.scene.settings.sampler = Sampler::Grid;
-    request.device = device;
-    return request;
+    return small_request("diffuse", 32, 24, 16, Sampler::Grid, device);
   };
   RenderReport mixed_report, pocl_report;
   StderrCapture capture("render");
@@ -267,20 +267,12 @@ TEST(OclgrindAreaLights, CornellBoxNeeHasNoFindingsAndThePoclImage) {
   for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
     const char* form_name = form == ExecutionForm::Megakernel ? "megakernel-path" : "wavefront";
     auto request_on = [form](const std::string& device) {
-      RenderRequest request;
-      request.use_kernel_cache = false;
-      request.scene = load_book_scene("cornell-box");
-      request.scene.settings.width = 11;
-      request.scene.settings.height = 9;
-      request.scene.settings.spp = 8;
-      request.scene.settings.seed = kSeed;
-      request.scene.settings.sampler = Sampler::Jitter;
+      RenderRequest request = small_request("cornell-box", 11, 9, 8, Sampler::Jitter, device);
       request.scene.settings.estimator = "nee";
       request.form = form;
       request.megakernel_loop = MegakernelLoop::PerPath;
       request.launch_target_s = 0;  // one launch per pass (variant_request says why)
       request.paths_in_flight = 64;
-      request.device = device;
       return request;
     };
     RenderReport oclgrind_report, pocl_report;
