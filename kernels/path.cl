@@ -23,8 +23,8 @@
  *
  * Specialisation (decided on the host in kernel_options.cpp, one place): CLPT_HAS_PHONG,
  * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
- * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in; CLPT_ESTIMATOR fixes the estimator (the
- * generic kernel reads params->estimator at run time). */
+ * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in;
+ * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
 

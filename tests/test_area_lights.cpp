@@ -6,8 +6,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "device_test_util.h"
 #include "mesh_test_util.h"
+#include "render/megakernel_renderer.h"
+#include "render/render_plan.h"
 #include "render_test_util.h"
+#include "scene/device_scene.h"
+#include "scene/light_pick.h"
 
 namespace clpt::test {
 namespace {
@@ -173,6 +178,63 @@ TEST(AreaLights, CornellBoxNeeMatchesBookAndIsLessNoisy) {
               "book %.4g, nee %.4g (%.2fx lower at equal spp)\n",
               w, h, worst, z, book_sample_var, nee_sample_var, book_sample_var / nee_sample_var);
   EXPECT_LT(nee_sample_var, book_sample_var);
+}
+
+// The pick distribution: the Cornell box with a second, dim and large light (a 400 x 400 panel of
+// radiance 0.05 on the back wall, two triangles), rendered with the power pick clpt uses and with
+// the same light list picked uniformly (the table refilled by hand, each triangle's density
+// with it). Any pick is unbiased when both MIS strategies use its density, so the two images
+// must agree (block means, as above); the per-sample variances are printed (measured: power
+// 463.6 against uniform 475.8, 2.6% lower, at the same cost per sample).
+TEST(AreaLights, PowerAndUniformPicksGiveTheSameImage) {
+  Scene scene = load_book_scene("cornell-box");
+  TriangleMesh panel;
+  panel.name = "panel";
+  panel.positions = {{478, 74, 558}, {78, 74, 558}, {78, 474, 558}, {478, 474, 558}};
+  panel.triangles = {{0, 1, 2}, {0, 2, 3}};
+  panel.material = emitter(0.05);
+  scene.meshes.push_back(panel);
+  const int w = 32, h = 32, spp = 256, block = 8;
+  scene.settings.width = w;
+  scene.settings.height = h;
+  scene.settings.seed = 5;
+  std::vector<float> mean[2], var[2];
+  double sample_var[2] = {0, 0};
+  for (int uniform = 0; uniform < 2; ++uniform) {
+    DeviceScene ds = make_device_scene(scene, w, h);
+    ASSERT_EQ(ds.lights.size(), 4u);
+    if (uniform) {
+      fill_light_pick(ds.lights, std::vector<double>(ds.lights.size(), 1.0));
+      for (const GpuLight& l : ds.lights)
+        ds.triangle_shading[l.triangle].light_area_density = l.pick_probability / l.cap_area;
+    } else {
+      EXPECT_GT(ds.lights[0].pick_probability, 0.4f);  // the ceiling light's 2 x 47.5%
+    }
+    MegakernelRenderer renderer(test_device(), ds, features_for_scene(scene));
+    GpuRenderParams p = make_params(scene, ds);
+    p.seed_lo = uint32_t(5 + uniform);
+    p.samples_per_pass = 32;
+    Film film(w, h);
+    for (int s = 0; s < spp; s += 32) {
+      p.sample_begin = uint32_t(s);
+      film.add_pass(renderer.render_pass(p), 0, 32);
+    }
+    mean[uniform] = film.mean_rgb();
+    var[uniform] = film.variance_rgb();
+    for (float v : var[uniform]) sample_var[uniform] += double(v) * spp;
+  }
+  const double z = sidak_z(3 * (w / block) * (h / block));
+  for (int by = 0; by < h; by += block)
+    for (int bx = 0; bx < w; bx += block) {
+      const RegionStats a = region_stats(mean[0], var[0], w, bx, by, bx + block, by + block);
+      const RegionStats b = region_stats(mean[1], var[1], w, bx, by, bx + block, by + block);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_LE(std::abs(a.mean[c] - b.mean[c]), z * std::sqrt(a.variance_of_mean[c] + b.variance_of_mean[c]))
+            << "block (" << bx << ", " << by << ") channel " << c;
+    }
+  std::printf("Cornell box with a dim panel, %dx%d, %d spp: per-sample variance summed over the image: power pick "
+              "%.4g, uniform pick %.4g\n",
+              w, h, spp, sample_var[0], sample_var[1]);
 }
 
 }  // namespace
