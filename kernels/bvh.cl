@@ -28,6 +28,9 @@
 #ifndef CLPT_HAS_TRIANGLES
 #define CLPT_HAS_TRIANGLES 1
 #endif
+#ifndef CLPT_HAS_TRIANGLE_LIGHTS
+#define CLPT_HAS_TRIANGLE_LIGHTS 1
+#endif
 
 /* Every buffer that holds geometry (and the lights), as the kernels receive them. */
 typedef struct SceneBuffers {
@@ -77,9 +80,11 @@ CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
 
 /* Walks the hierarchy for the closest hit before hit->t (any_hit: stops at the first hit, for a
  * shadow ray whose hit->t is the distance to the light). Spheres keep intersect.cl's contract:
- * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit. */
+ * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit; triangle
+ * `skip_triangle` (a shadow ray's sampled light triangle, which cannot hide its own point; -1:
+ * none) neither, in kernels with triangle lights. */
 CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
-                              int skip, bool any_hit, Hit* hit) {
+                              int skip, int skip_triangle, bool any_hit, Hit* hit) {
   if (node_count == 0u) return;
   const Vec3 inv_d = inverse_direction(d);
   const ShearedRay ray = sheared_ray(o, d);
@@ -116,7 +121,11 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
 #if CLPT_HAS_TRIANGLES
         for (uint i = first; i < first + count; ++i) {
           const real t = triangle_intersect(&ray, &scene->triangles[i], hit->t);
+#if CLPT_HAS_TRIANGLE_LIGHTS
+          const bool closer = t < hit->t && (int)i != skip_triangle;
+#else
           const bool closer = t < hit->t;
+#endif
           hit->t = closer ? t : hit->t;
           hit->sphere = closer ? -1 : hit->sphere;
           hit->triangle = closer ? (int)i : hit->triangle;
@@ -148,19 +157,20 @@ CLPT_INLINE Hit scene_closest_hit(const SceneBuffers* scene, const GpuRenderPara
                                   int skip) {
   Hit hit = scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
 #if CLPT_HAS_BVH
-  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, false, &hit);
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, -1, false, &hit);
 #endif
   return hit;
 }
 
 /* Whether anything of the hierarchy lies along the ray before t_max (a shadow ray's test; the
- * loop's spheres are tested by the caller's closest hit, path.cl). Without a hierarchy: false. */
+ * loop's spheres are tested by the caller's closest hit, path.cl), not counting sphere `skip` and
+ * triangle `skip_triangle` (bvh_traverse). Without a hierarchy: false. */
 CLPT_INLINE bool scene_hierarchy_occluded(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o,
-                                          Vec3 d, real t_max, int skip) {
+                                          Vec3 d, real t_max, int skip, int skip_triangle) {
 #if CLPT_HAS_BVH
   Hit hit = no_hit();
   hit.t = t_max;
-  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, true, &hit);
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, skip_triangle, true, &hit);
   return hit.sphere >= 0 || hit.triangle >= 0;
 #else
   (void)scene;
@@ -169,6 +179,7 @@ CLPT_INLINE bool scene_hierarchy_occluded(const SceneBuffers* scene, const GpuRe
   (void)d;
   (void)t_max;
   (void)skip;
+  (void)skip_triangle;
   return false;
 #endif
 }

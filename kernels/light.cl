@@ -1,12 +1,19 @@
 /* light.cl: next-event estimation's light sampling (the `nee` estimator).
  *
- * One emitter is picked uniformly from the light buffer, then a point uniformly by area on its
- * cap (GpuLight, types.h): the part of the emitter sphere that the host found not to be hidden
- * inside another sphere. For the book's light that cap is the radius-1.41 disc-like patch below
- * the ceiling, so nearly every shadow ray can reach it; sampling the whole radius-100 sphere, or
- * the cone it subtends, would send most shadow rays into the ceiling (README "Estimators").
- * Densities are per unit solid angle at the shading point, the light pick included, so that
- * path.cl can weight light samples and BSDF hits against each other (power heuristic). */
+ * The light list (GpuLight, types.h) holds the emitter spheres' caps, then the emitting
+ * triangles. Kernels without triangle lights (CLPT_HAS_TRIANGLE_LIGHTS 0: the scene has no
+ * emitting mesh) pick a light uniformly, as before triangles could be lights; kernels with them
+ * pick by power from the host's alias table (host/scene/light_pick.h), one draw, constant time.
+ * Then a point uniformly by area on the light: on a sphere, its cap, the part of the emitter that
+ * the host found not to be hidden inside another sphere (for the book's light the radius-1.41
+ * disc-like patch below the ceiling, so nearly every shadow ray can reach it; sampling the whole
+ * radius-100 sphere, or the cone it subtends, would send most shadow rays into the ceiling, README
+ * "Estimators"); on a triangle, uniformly over it. Emitting triangles shine on both sides, as a
+ * BSDF hit on either side counts their emission (path.cl). Densities are per unit solid angle at
+ * the shading point, the light pick included (pick probability x distance^2 / (area |cos|)), so
+ * that path.cl can weight light samples and BSDF hits against each other (power heuristic); a
+ * BSDF hit on an emitting triangle finds its pick probability / area in its shading record
+ * (GpuTriangleShading.light_area_density). */
 #ifndef CLPT_LIGHT_CL
 #define CLPT_LIGHT_CL
 
@@ -14,6 +21,15 @@
 #include "maths.cl"
 #include "rng.cl"
 #include "intersect.cl"
+#include "triangle.cl"
+#include "bvh.cl"
+
+#ifndef CLPT_HAS_TRIANGLE_LIGHTS
+#define CLPT_HAS_TRIANGLE_LIGHTS 1
+#endif
+#if CLPT_HAS_TRIANGLE_LIGHTS && defined(CLPT_HAS_TRIANGLES) && !CLPT_HAS_TRIANGLES
+#error "triangle lights need triangles (kernel_options.cpp)"
+#endif
 
 /* Sampler dimension of the light sample taken at bounce b: CLPT_DIM_LIGHT + b (sampler.cl and
  * rng.cl number the camera 0 and scattering 1 + b). */
@@ -24,7 +40,16 @@ typedef struct LightSample {
   real distance;  /* to the sampled point, world units */
   real pdf;       /* solid-angle density of this direction, light pick included; 0: unusable (the
                      point faces away from the shading point, or the density overflowed) */
-  int sphere;     /* the emitter's index in the sphere buffer */
+  int sphere;     /* the emitter's index in the sphere buffer; -1 for a triangle light */
+#if CLPT_HAS_TRIANGLE_LIGHTS
+  int triangle;   /* the emitting triangle's index in the triangle buffer; -1 for a sphere light */
+  Vec3 emission;  /* the light's emitted radiance per channel */
+  /* Where a shadow ray to a triangle light ends: the sampled point moved off the triangle's plane
+   * towards the shading point by its rounding bound (triangle_offset_origin), so that no rounding
+   * puts the end behind the plane (the light itself is also skipped by index, bvh.cl). */
+  Vec3 target;
+  CLPT_ABI_PAD(int, 1)
+#endif
 } LightSample;
 
 /* Solid-angle density of a cap point seen at `distance` under `cos_light` (its normal against
@@ -34,10 +59,17 @@ CLPT_INLINE real light_solid_angle_pdf(real distance, real cos_light, real cap_a
   return denominator > (real)0 ? distance * distance / denominator : (real)0;
 }
 
-CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light_count,
-                                     __global const GpuSphere* spheres, Vec3 x, Uniform4 u) {
-  const uint index = min((uint)(u.u2 * (float)light_count), light_count - 1u);
-  __global const GpuLight* light = &lights[index];
+/* The same density when the light was picked with probability `pick_probability`. */
+CLPT_INLINE real light_pick_pdf(real distance, real cos_light, real area, real pick_probability) {
+  const real denominator = area * fabs(cos_light);
+  return denominator > (real)0 ? distance * distance * pick_probability / denominator : (real)0;
+}
+
+/* A point uniformly by area on the cap of sphere light `light` for draws u0, u1, seen from x:
+ * direction and distance filled, pdf left to the caller; *cos_light is the point's normal
+ * against the direction, *facing whether that side can be seen from x. */
+CLPT_INLINE LightSample sphere_cap_sample(__global const GpuLight* light, __global const GpuSphere* spheres, Vec3 x,
+                                          Uniform4 u, real* cos_light, bool* facing) {
   __global const GpuSphere* sphere = &spheres[light->sphere];
   /* A point at polar angle theta from the cap axis, 1 - cos(theta) uniform in [0, one_minus_cos_cap]
    * (uniform by area on a sphere); sin(theta) from v (2 - v) keeps precision for tiny caps. */
@@ -53,7 +85,7 @@ CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light
   LightSample s;
   s.distance = clpt_sqrt(v3_dot(to_point, to_point));
   s.direction = v3_scale(to_point, (real)1 / s.distance);
-  const real cos_light = v3_dot(normal, s.direction);
+  *cos_light = v3_dot(normal, s.direction);
   /* Only the side facing x can be seen from x: from outside the sphere the point must face back
    * along the ray, from inside it must face along it. Outside means |c - x|^2 - r^2 > 0, formed as
    * intersect.cl forms c' (no r^2 term). The shadow ray's distance cannot tell the sides apart:
@@ -61,16 +93,79 @@ CLPT_INLINE LightSample light_sample(__global const GpuLight* lights, uint light
   const Vec3 e = v3_sub(sphere_surface_point(sphere), x);
   const real r = sphere_radius(sphere);
   const bool outside = v3_dot(e, e) - (real)2 * r * v3_dot(sphere_surface_normal(sphere), e) > (real)0;
-  const bool facing = outside ? cos_light < (real)0 : cos_light > (real)0;
-  s.pdf = light_solid_angle_pdf(s.distance, cos_light, light->cap_area, light_count);
-  s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
+  *facing = outside ? *cos_light < (real)0 : *cos_light > (real)0;
+  s.pdf = (real)0;
   s.sphere = (int)light->sphere;
   return s;
 }
 
+#if !CLPT_HAS_TRIANGLE_LIGHTS
+/* Sphere lights only, picked uniformly. */
+CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count, Vec3 x, Uniform4 u) {
+  const uint index = min((uint)(u.u2 * (float)light_count), light_count - 1u);
+  __global const GpuLight* light = &scene->lights[index];
+  real cos_light;
+  bool facing;
+  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing);
+  s.pdf = light_solid_angle_pdf(s.distance, cos_light, light->cap_area, light_count);
+  s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
+  return s;
+}
+#else
+/* Sphere and triangle lights, picked by power: entry i = floor(u2 n) is kept when the fraction of
+ * u2 n is below its alias threshold, else its alias is taken (Walker's alias method). Both kinds'
+ * points are formed and the light's kind selects one (selects, not branches, for PoCL). */
+CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count, Vec3 x, Uniform4 u) {
+  const float scaled = u.u2 * (float)light_count;
+  const uint slot = min((uint)scaled, light_count - 1u);
+  const float fraction = scaled - (float)slot;
+  const uint index = fraction < scene->lights[slot].alias_threshold ? slot : scene->lights[slot].alias;
+  __global const GpuLight* light = &scene->lights[index];
+  const bool is_triangle = light->triangle != CLPT_LIGHT_SPHERE;
+
+  real cos_light;
+  bool facing;
+  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing);
+  s.triangle = -1;
+  s.emission = v3_load_global(scene->spheres[light->sphere].material.emission);
+  s.target = v3_add_scaled(x, s.direction, s.distance);
+
+  /* Uniform by area: b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0), b2 = the rest. Seen from either side. */
+  const uint tri = is_triangle ? light->triangle : 0u;
+  const real root = clpt_sqrt((real)u.u0);
+  const real b1 = (real)u.u1 * root;
+  const TriangleSurface point = triangle_point(&scene->triangles[tri], (real)1 - root, b1, root - b1);
+  const Vec3 to_point = v3_sub(point.point, x);
+  const real distance = clpt_sqrt(v3_dot(to_point, to_point));
+  const Vec3 direction = v3_scale(to_point, (real)1 / distance);
+  s.direction = v3_select(is_triangle, direction, s.direction);
+  s.distance = is_triangle ? distance : s.distance;
+  cos_light = is_triangle ? v3_dot(point.geometric, direction) : cos_light;
+  facing = is_triangle || facing;
+  s.sphere = is_triangle ? -1 : s.sphere;
+  s.triangle = is_triangle ? (int)tri : -1;
+  s.emission = v3_select(is_triangle, v3_load_global(scene->triangle_shading[tri].material.emission), s.emission);
+  s.target = v3_select(is_triangle, triangle_offset_origin(&point, v3_scale(direction, (real)-1)), s.target);
+
+  s.pdf = light_pick_pdf(s.distance, cos_light, light->cap_area, (real)light->pick_probability);
+  s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
+  return s;
+}
+
+/* Density with which light_sample would have chosen the direction d that hit emitting triangle
+ * `shading` (geometric normal `geometric`) at distance t: its pick probability / area, converted
+ * to solid angle. 0 for a triangle that is no light. */
+CLPT_INLINE real triangle_light_pdf_of_hit(__global const GpuTriangleShading* shading, Vec3 geometric, Vec3 d, real t) {
+  const real pdf = light_pick_pdf(t, v3_dot(geometric, d), (real)1, (real)shading->light_area_density);
+  return is_finite_real(pdf) ? pdf : (real)0;
+}
+#endif
+
 /* Density with which light_sample would have chosen the direction d that hit emitter `sphere` at
  * distance t with outward normal `normal` there: 0 when the sphere is no light or the point lies
- * outside its cap (a tolerance of 1e-3 of the cap's height absorbs float rounding at the rim). */
+ * outside its cap (a tolerance of 1e-3 of the cap's height absorbs float rounding at the rim).
+ * The loop runs over the sphere lights (CLPT_LIGHT_COUNT; the generic kernel runs over the whole
+ * list, whose triangle entries have an empty cap and never match). */
 CLPT_INLINE real light_pdf_of_hit(__global const GpuLight* lights, uint light_count, int sphere,
                                   Vec3 normal, Vec3 d, real t) {
   real pdf = (real)0;
@@ -90,7 +185,12 @@ CLPT_INLINE real light_pdf_of_hit(__global const GpuLight* lights, uint light_co
     __global const GpuLight* light = &lights[i];
     const real height = (real)1 - v3_dot(normal, v3_load_global(light->cap_axis));
     const bool in_cap = (int)light->sphere == sphere && height <= (real)light->one_minus_cos_cap * (real)1.001f;
+#if CLPT_HAS_TRIANGLE_LIGHTS
+    (void)count;
+    pdf = in_cap ? light_pick_pdf(t, v3_dot(normal, d), light->cap_area, (real)light->pick_probability) : pdf;
+#else
     pdf = in_cap ? light_solid_angle_pdf(t, v3_dot(normal, d), light->cap_area, count) : pdf;
+#endif
   }
   return pdf;
 }

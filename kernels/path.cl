@@ -12,7 +12,8 @@
  *    the light are weighted by the power heuristic (Veach's MIS, beta = 2), so the two strategies
  *    together count every light path once. Glass and the mirror are specular: no shadow ray
  *    there, and a light hit after them (or by the camera ray) has weight 1. Emitting triangles
- *    are found by BSDF sampling only (they are not in the light list yet).
+ *    are lights like the spheres' caps (CLPT_HAS_TRIANGLE_LIGHTS, light.cl); without that
+ *    feature the scene has none.
  * Segment `bounce` = 0 is the camera ray; at most max_bounces scattering events follow, and
  * emission found at the end of the last segment still counts. A shadow ray from a vertex that may
  * scatter is the same segment as the BSDF ray it competes with, so both estimators sum the same
@@ -21,9 +22,9 @@
  * and divides the survivors by q: the expectation is unchanged.
  *
  * Specialisation (decided on the host in kernel_options.cpp, one place): CLPT_HAS_PHONG,
- * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading) and
- * CLPT_HAS_BVH (traversal, bvh.cl) compile those in; CLPT_ESTIMATOR fixes the estimator (the
- * generic kernel reads params->estimator at run time). */
+ * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
+ * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in;
+ * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
 
@@ -219,24 +220,49 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
    * return: a branch here would stop PoCL's vectoriser). */
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample,
                                        CLPT_DIM_LIGHT + path->bounce);
-  const LightSample ls = light_sample(scene->lights, params->light_count, scene->spheres, surface->point, u);
+  const LightSample ls = light_sample(scene, params->light_count, surface->point, u);
   real bsdf_pdf;
   const Vec3 f_cos = material_eval(m, path->direction, surface->normal, ls.direction, &bsdf_pdf);
   const int skip = index >= 0 && v3_dot(ls.direction, surface->normal) > (real)0 ? index : -1;
   const Vec3 origin = leaving_origin(surface, ls.direction);
+#if CLPT_HAS_TRIANGLE_LIGHTS
+  /* A triangle light's shadow ray runs from the offset origin to the sample's offset target and
+   * skips the light's own triangle (bvh.cl): no epsilon of the scene's size at either end. A
+   * sphere light's ends 0.1% short of its point, as below. */
+  const bool to_triangle = ls.triangle >= 0;
+  const Vec3 to_target = v3_sub(ls.target, origin);
+  const real target_distance = clpt_sqrt(v3_dot(to_target, to_target));
+  const Vec3 shadow_direction =
+      v3_select(to_triangle, v3_scale(to_target, (real)1 / (target_distance > (real)0 ? target_distance : (real)1)),
+                ls.direction);
+  const real near_light = to_triangle ? target_distance : ls.distance * (real)0.999f;
+  const int skip_triangle = ls.triangle;
+#else
+  const Vec3 shadow_direction = ls.direction;
   const real near_light = ls.distance * (real)0.999f;
-  const Hit shadow = scene_intersect(scene->spheres, params->sphere_count, origin, ls.direction,
+  const int skip_triangle = -1;
+#endif
+  const Hit shadow = scene_intersect(scene->spheres, params->sphere_count, origin, shadow_direction,
                                      params->ray_epsilon, skip);
-  const bool hierarchy_blocks = scene_hierarchy_occluded(scene, params, origin, ls.direction, near_light, skip);
+  const bool hierarchy_blocks =
+      scene_hierarchy_occluded(scene, params, origin, shadow_direction, near_light, skip, skip_triangle);
   *segments += 1u;
   /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
    * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
-   * find the emitter first (when the lights are in the loop), the hierarchy nothing before it. */
+   * find the emitter first (when the lights are in the loop), the hierarchy nothing before it;
+   * for a triangle light, the loop's spheres nothing before its target. */
+#if CLPT_HAS_TRIANGLE_LIGHTS
+  const bool loop_clear = params->sphere_count == 0u ||
+                          ((to_triangle || shadow.sphere == ls.sphere) && shadow.t >= near_light);
+  const Vec3 emission = ls.emission;
+#else
   const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
+  const Vec3 emission = v3_load_global(scene->spheres[ls.sphere].material.emission);
+#endif
   const bool visible = ls.pdf > (real)0 && loop_clear && !hierarchy_blocks && !v3_is_zero(f_cos) &&
                        leaves_consistently(surface, ls.direction);
   const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
-  return v3_scale(v3_mul(f_cos, v3_load_global(scene->spheres[ls.sphere].material.emission)), weight);
+  return v3_scale(v3_mul(f_cos, emission), weight);
 }
 
 /* Field-wise choice between two path states (a select of the whole struct would stop PoCL's
@@ -274,10 +300,16 @@ CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene,
   Vec3 emitted = v3_mul(path->throughput, v3_load_global(material->emission));
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
-    /* A BSDF-sampled ray that found a light competes with the light sample taken before it
-     * (triangles are no sampled lights: density 0, the hit keeps its full weight). */
-    const real light_pdf = path->bsdf_pdf > (real)0
+    /* A BSDF-sampled ray that found a light competes with the light sample taken before it. An
+     * emitting triangle's density comes from its shading record; without triangle lights it is
+     * no sampled light (density 0: the hit keeps its full weight). */
+    real light_pdf = path->bsdf_pdf > (real)0
         ? light_pdf_of_hit(scene->lights, params->light_count, sphere_index, normal, path->direction, t) : (real)0;
+#if CLPT_HAS_TRIANGLE_LIGHTS
+    const real triangle_pdf = triangle_light_pdf_of_hit(&scene->triangle_shading[surface.on_triangle ? hit.triangle : 0],
+                                                        surface.triangle.geometric, path->direction, t);
+    light_pdf = surface.on_triangle ? triangle_pdf : light_pdf;
+#endif
     emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? mis_power(path->bsdf_pdf, light_pdf) : (real)1);
   }
 #endif

@@ -104,12 +104,10 @@ typedef struct TriangleSurface {
   CLPT_ABI_PAD(int, 3)
 } TriangleSurface;
 
-CLPT_INLINE TriangleSurface triangle_surface(Vec3 o, Vec3 d, __global const GpuTriangle* tri,
-                                             __global const GpuTriangleShading* shading) {
-  const ShearedRay ray = sheared_ray(o, d);
-  const TriangleTest r = triangle_test(&ray, tri);
-  const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
-  const real b0 = r.u * inv, b1 = r.v * inv, b2 = r.w * inv;
+/* The point of triangle tri at barycentrics (b0, b1, b2), with its error bound and the geometric
+ * normal; the shading normal is left the geometric one. Hits (triangle_surface) and light
+ * samples (light.cl) both take their points from here, so both offset rays alike. */
+CLPT_INLINE TriangleSurface triangle_point(__global const GpuTriangle* tri, real b0, real b1, real b2) {
   const Vec3 p0 = v3_load_global(tri->v0), p1 = v3_load_global(tri->v1), p2 = v3_load_global(tri->v2);
   TriangleSurface s;
   s.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
@@ -122,6 +120,17 @@ CLPT_INLINE TriangleSurface triangle_surface(Vec3 o, Vec3 d, __global const GpuT
                                             : (abs_sum.y > abs_sum.z ? abs_sum.y : abs_sum.z));
   const Vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
   s.geometric = v3_normalize(v3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x));
+  s.shading = s.geometric;
+  return s;
+}
+
+CLPT_INLINE TriangleSurface triangle_surface(Vec3 o, Vec3 d, __global const GpuTriangle* tri,
+                                             __global const GpuTriangleShading* shading) {
+  const ShearedRay ray = sheared_ray(o, d);
+  const TriangleTest r = triangle_test(&ray, tri);
+  const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
+  const real b0 = r.u * inv, b1 = r.v * inv, b2 = r.w * inv;
+  TriangleSurface s = triangle_point(tri, b0, b1, b2);
   const Vec3 interpolated = v3_add(v3_add(v3_scale(v3_load_global(shading->normal0), b0),
                                           v3_scale(v3_load_global(shading->normal1), b1)),
                                    v3_scale(v3_load_global(shading->normal2), b2));

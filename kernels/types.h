@@ -96,7 +96,10 @@ typedef struct GpuTriangleShading {
   float normal2[3];       /* at v2 */
   clpt_u32 has_normals;   /* 1: interpolate the normals above; 0: the geometric normal shades */
   GpuMaterial material;
-  float pad;
+  /* Emitting triangles in the light list: the probability per unit area with which next-event
+   * estimation samples a point of this triangle (its pick probability / its area, world
+   * units^-2), which a BSDF hit on it needs for its MIS weight; 0 for every other triangle. */
+  float light_area_density;
 } GpuTriangleShading;
 
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
@@ -106,16 +109,27 @@ typedef struct GpuTriangleShading {
 /* No Russian roulette (GpuRenderParams.rr_from). */
 #define CLPT_RR_NEVER 0xffffffffu
 
-/* An emitter as next-event estimation samples it: 32 bytes. Only a spherical cap of the emitter
- * is sampled, uniformly by area: the part that no other sphere hides (the host computes it in
- * double, device_scene.cpp). The book's light is a radius-100 sphere of which only a cap of radius
- * about 1.41 pokes through the ceiling; sampling the whole sphere would waste all but 5e-5 of the
- * shadow rays on it. */
+/* A light as next-event estimation samples it: 48 bytes. The light list holds the emitter spheres
+ * first (their count is CLPT_LIGHT_COUNT in a specialised kernel), then the emitting triangles.
+ * Sphere lights: only a spherical cap of the emitter is sampled, uniformly by area: the part that
+ * no other sphere hides (the host computes it in double, device_scene.cpp). The book's light is a
+ * radius-100 sphere of which only a cap of radius about 1.41 pokes through the ceiling; sampling
+ * the whole sphere would waste all but 5e-5 of the shadow rays on it. Triangle lights: a point
+ * uniformly by area on the triangle.
+ * Which light: in kernels without triangle lights, uniformly (1 / light count, as before
+ * triangle lights existed); with them (CLPT_HAS_TRIANGLE_LIGHTS), by the alias table below over
+ * each light's power (area times mean emitted radiance; light_pick.h on the host). */
+#define CLPT_LIGHT_SPHERE 0xffffffffu /* GpuLight.triangle of a sphere light */
 typedef struct GpuLight {
-  float cap_axis[3];       /* unit, from the emitter's centre through the middle of the cap */
-  clpt_u32 sphere;         /* index of the emitter in the sphere buffer */
-  float one_minus_cos_cap; /* the cap: points p with 1 - axis.(p - c)/r <= this; in (0, 2] */
-  float cap_area;          /* 2 pi r^2 one_minus_cos_cap, world units^2 */
+  float cap_axis[3];       /* sphere: unit, from the emitter's centre through the middle of the cap */
+  clpt_u32 sphere;         /* sphere: index of the emitter in the sphere buffer; triangle: 0 */
+  float one_minus_cos_cap; /* sphere: the cap, points p with 1 - axis.(p - c)/r <= this, in (0, 2];
+                              triangle: 0 (so no sphere hit ever lies in it) */
+  float cap_area;          /* sphere: 2 pi r^2 one_minus_cos_cap; triangle: its area; world units^2 */
+  clpt_u32 triangle;       /* triangle: index in the triangle buffer; sphere: CLPT_LIGHT_SPHERE */
+  float pick_probability;  /* probability that the power pick chooses this entry (triangle-light kernels) */
+  float alias_threshold;   /* alias table: entry i is kept when the draw's fraction is below this */
+  clpt_u32 alias;          /* alias table: else entry `alias` is taken */
   float pad[2];
 } GpuLight;
 
@@ -190,6 +204,7 @@ typedef struct GpuPixelPass {
   X(GpuTriangleShading, normal2)                                                                  \
   X(GpuTriangleShading, has_normals)                                                              \
   X(GpuTriangleShading, material)                                                                 \
+  X(GpuTriangleShading, light_area_density)                                                       \
   X(GpuSphere, surface_point)                                                                     \
   X(GpuSphere, radius)                                                                            \
   X(GpuSphere, surface_normal)                                                                    \
@@ -224,6 +239,10 @@ typedef struct GpuPixelPass {
   X(GpuLight, sphere)                                                                             \
   X(GpuLight, one_minus_cos_cap)                                                                  \
   X(GpuLight, cap_area)                                                                           \
+  X(GpuLight, triangle)                                                                           \
+  X(GpuLight, pick_probability)                                                                   \
+  X(GpuLight, alias_threshold)                                                                    \
+  X(GpuLight, alias)                                                                              \
   X(GpuPixelPass, sum)                                                                            \
   X(GpuPixelPass, valid_samples)                                                                  \
   X(GpuPixelPass, sum_sq)                                                                         \
@@ -249,7 +268,7 @@ CLPT_CHECK_SIZE(GpuBvhNode, 32)
 CLPT_CHECK_SIZE(GpuTriangle, 48)
 CLPT_CHECK_SIZE(GpuTriangleShading, 80)
 CLPT_CHECK_SIZE(GpuSphere, 96)
-CLPT_CHECK_SIZE(GpuLight, 32)
+CLPT_CHECK_SIZE(GpuLight, 48)
 CLPT_CHECK_SIZE(GpuCamera, 48)
 CLPT_CHECK_SIZE(GpuRenderParams, 116)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)

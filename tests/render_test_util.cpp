@@ -58,18 +58,23 @@ double sidak_z(int comparisons, double family_alpha) {
   return lo;
 }
 
-std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,
-                                       const std::function<void(RenderRequest&)>& configure) {
+RenderRequest scene_request(const std::string& scene_name, int width, int height, uint64_t seed, Sampler sampler) {
   RenderRequest request;
   request.use_kernel_cache = false;  // tests compile the kernels under test from source
   request.scene = load_book_scene(scene_name);
-  request.scene.settings.width = 48;
-  request.scene.settings.height = 36;
-  request.scene.settings.spp = 32;
+  request.scene.settings.width = width;
+  request.scene.settings.height = height;
   request.scene.settings.seed = seed;
-  request.scene.settings.sampler = Sampler::Jitter;
+  request.scene.settings.sampler = sampler;
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";
+  return request;
+}
+
+std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,
+                                       const std::function<void(RenderRequest&)>& configure) {
+  RenderRequest request = scene_request(scene_name, 48, 36, seed);
+  request.scene.settings.spp = 32;
   configure(request);
   RenderReport report;
   return run_render(request, report).mean_rgb();

@@ -43,6 +43,11 @@ std::vector<Region> book_regions();
 // false-alarm probability `family_alpha` (Sidak correction).
 double sidak_z(int comparisons, double family_alpha = 0.01);
 
+// A request for scenes/NAME.toml at width x height, `seed`, `sampler`, compiled from source (clpt's
+// kernel cache off), on the test device (CLPT_TEST_DEVICE, else "cpu").
+RenderRequest scene_request(const std::string& scene_name, int width, int height, uint64_t seed,
+                            Sampler sampler = Sampler::Jitter);
+
 // One of the book's scenes at 48x36, 32 spp, jitter sampler, `seed`, on the test device with
 // clpt's kernel cache off; `configure` sets what the test varies. Returns the mean image.
 std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,

@@ -38,7 +38,7 @@ TEST(StructLayout, HostMatchesDevice) {
   EXPECT_EQ(sizeof(GpuCamera), 48u);
   EXPECT_EQ(sizeof(GpuRenderParams), 116u);
   EXPECT_EQ(sizeof(GpuSampleSlot), 8u);
-  EXPECT_EQ(sizeof(GpuLight), 32u);
+  EXPECT_EQ(sizeof(GpuLight), 48u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);
 }
 

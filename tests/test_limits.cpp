@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "cl/cl_device.h"
+#include "mesh_test_util.h"
 #include "render/checkpoint.h"
 #include "render/film.h"
 #include "render/limits.h"
@@ -128,6 +129,16 @@ TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   const MemoryEstimate mesh = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000);
   EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 80) + 2u * 100010 * 32);
   EXPECT_EQ(kDeviceBytesPerTriangle, 192u);
+  // An emitting mesh's triangles are light entries too (48 B each), counted from the scene.
+  const MemoryEstimate lit = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000, 100001);
+  EXPECT_EQ(lit.total_bytes - mesh.total_bytes, 100001u * 48);
+  Scene scene;
+  scene.meshes.push_back(test::closed_box({0, 0, 0}, {1, 1, 1}, test::emitter(1)));
+  scene.meshes.push_back(test::closed_box({2, 0, 0}, {3, 1, 1}, test::lambertian(0.5)));
+  Sphere light;
+  light.material = test::emitter(2);
+  scene.spheres = {light, Sphere{}};
+  EXPECT_EQ(light_entry_bound(scene), 13u);
   const DeviceInfo small = fake_device(8ull << 30, 64ull << 20);
   const MemoryEstimate big = estimate_device_memory(ExecutionForm::Megakernel, 100, 1, 0, small, 1000000);
   EXPECT_EQ(big.largest_label, "triangle shading");

@@ -32,16 +32,8 @@ constexpr int kWidth = 48, kHeight = 36;
 
 RenderRequest request_for(const std::string& scene_name, const std::string& estimator, Sampler sampler,
                           uint64_t seed) {
-  RenderRequest request;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  request.scene = load_book_scene(scene_name);
-  request.scene.settings.width = kWidth;
-  request.scene.settings.height = kHeight;
-  request.scene.settings.seed = seed;
-  request.scene.settings.sampler = sampler;
+  RenderRequest request = scene_request(scene_name, kWidth, kHeight, seed, sampler);
   request.scene.settings.estimator = estimator;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   return request;
 }
 

@@ -131,6 +131,9 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.russian_roulette = scene.settings.rr_from >= 0;
   if (f.estimator == Estimator::Nee)
     f.light_count = static_cast<int>(light_caps(scene).size());
+  // Only nee samples lights; a scene without emitting triangles keeps the kernel it had before
+  // triangle lights existed (uniform pick over its spheres' caps, no triangle sampling compiled).
+  f.triangle_lights = f.estimator == Estimator::Nee && has_triangle_lights(scene);
   f.phong = false;
   f.glass = false;
   f.mirror = false;
@@ -175,6 +178,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   o << " -DCLPT_HAS_MIRROR=" << (features.mirror ? 1 : 0);
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
+  o << " -DCLPT_HAS_TRIANGLE_LIGHTS=" << (features.generic || features.triangle_lights ? 1 : 0);
   o << " -DCLPT_HAS_RR=" << (features.generic || features.russian_roulette ? 1 : 0);
   if (!features.generic) o << " -DCLPT_ESTIMATOR=" << static_cast<int>(features.estimator);
   // A specialised kernel fixes its sphere loop, at 0 when the spheres are in the hierarchy or
@@ -242,10 +246,18 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                   " in the hierarchy; closest hit and any-hit shadow rays)"
             : std::string("left out (no triangles, and few enough spheres for the loop)"))
     << "\n";
+  o << "  triangle lights: "
+    << (features.generic ? "compiled (generic kernel; the pick is uniform unless the scene has emitting triangles)"
+        : features.triangle_lights
+            ? "compiled (nee and an emitting mesh: its triangles are sampled by area, lights picked by power "
+              "from an alias table)"
+        : features.estimator != Estimator::Nee ? "left out (the book estimator samples no lights)"
+                                                : "left out (no emitting mesh: spheres' caps only, picked uniformly)")
+    << "\n";
   if (!features.generic && features.estimator == Estimator::Nee)
     o << "  light loop: "
       << (features.light_count >= 0 ? "fixed at the scene's " + std::to_string(features.light_count) +
-                                          " sampled light(s)"
+                                          " sampled sphere light(s)"
                                     : std::string("run-time light count"))
       << "\n";
   if (!features.generic)

@@ -89,11 +89,14 @@ struct KernelFeatures {
   bool glass = true;     // CLPT_HAS_GLASS
   bool mirror = true;    // CLPT_HAS_MIRROR
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
+  // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks
+  // lights by power (nee and a scene with an emitting mesh, or generic).
+  bool triangle_lights = true;
   bool spheres_in_bvh = false;  // the spheres are hierarchy primitives (no sphere loop)
   // CLPT_HAS_BVH: traversal compiled (triangles, spheres_in_bvh or generic); see has_hierarchy().
   bool has_hierarchy() const { return generic || triangles || spheres_in_bvh; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
-  int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0 (nee's light loop fixed likewise); -1: run time
+  int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0: nee's sphere-light loop fixed likewise; -1: run time
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:
   uint32_t lockstep_group = 0;  // CLPT_LOCKSTEP_GROUP when > 0 (megakernel.cl); 0: per-path loop
   SceneLoops scene_loops = SceneLoops::Auto;  // the request; resolved per device into:

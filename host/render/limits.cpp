@@ -84,6 +84,14 @@ void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {
                                         " (2^27) are supported");
 }
 
+uint64_t light_entry_bound(const Scene& scene) {
+  uint64_t n = 0;
+  for (const Sphere& s : scene.spheres) n += s.material.type == MaterialType::Emitter;
+  for (const TriangleMesh& m : scene.meshes)
+    if (m.material.type == MaterialType::Emitter) n += m.triangles.size();
+  return n;
+}
+
 uint64_t triangle_count(const Scene& scene) {
   uint64_t n = 0;
   for (const TriangleMesh& m : scene.meshes) n += m.triangles.size();
@@ -91,10 +99,12 @@ uint64_t triangle_count(const Scene& scene) {
 }
 
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
-                                      uint32_t paths_in_flight, const DeviceInfo& device, uint64_t triangles) {
+                                      uint32_t paths_in_flight, const DeviceInfo& device, uint64_t triangles,
+                                      uint64_t lights) {
   MemoryEstimate e;
   const uint64_t budget = launch_buffer_budget(device);
   add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
+  add_buffer(e, lights * sizeof(GpuLight), "lights");
   if (triangles > 0) {
     static_assert(sizeof(GpuTriangle) + sizeof(GpuTriangleShading) + 2 * sizeof(GpuBvhNode) == kDeviceBytesPerTriangle,
                   "kDeviceBytesPerTriangle states the layouts of kernels/types.h");

@@ -69,13 +69,16 @@ struct MemoryEstimate {
 // largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 // `triangles` adds the triangle, triangle shading and hierarchy node buffers (the nodes counted at
-// their bound of two per primitive, spheres included).
+// their bound of two per primitive, spheres included); `lights` the light list (48 B each).
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device,
-                                      uint64_t triangles = 0);
+                                      uint64_t triangles = 0, uint64_t lights = 0);
 
 // Triangles over all of the scene's meshes.
 uint64_t triangle_count(const Scene& scene);
+// At least the light list's entries (scene/device_scene.h): emitter spheres and the triangles of
+// emitting meshes (of which those of zero area get none).
+uint64_t light_entry_bound(const Scene& scene);
 
 // Throws Error(DeviceError) naming the device and the sizes when `need` exceeds the device's
 // global memory or its largest allocation.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/light_pick.h"
 #include "scene/vec3_ops.h"
 #include "util/error.h"
 
@@ -84,7 +85,52 @@ std::vector<T> permuted(const std::vector<T>& v, const std::vector<uint32_t>& or
   return out;
 }
 
+// Area of a triangle as the kernels see it (its float vertices), in double, world units^2.
+double triangle_area(const GpuTriangle& t) {
+  const Vec3 a{t.v0[0], t.v0[1], t.v0[2]}, b{t.v1[0], t.v1[1], t.v1[2]}, c{t.v2[0], t.v2[1], t.v2[2]};
+  return 0.5 * length(cross(sub(b, a), sub(c, a)));
+}
+
+// Appends a light entry for every emitting triangle of positive area (in the triangle buffer's
+// final order), then fills the pick distribution of the whole list: by power when there are
+// triangle lights, else uniform (what kernels without triangle lights draw); uniform also when
+// every power is 0. Each emitting triangle's light_area_density is set from its pick.
+void add_triangle_lights(DeviceScene& out) {
+  const size_t sphere_lights = out.lights.size();
+  for (size_t i = 0; i < out.triangles.size(); ++i) {
+    if (out.triangle_shading[i].material.kind != CLPT_MATERIAL_EMITTER) continue;
+    const double area = triangle_area(out.triangles[i]);
+    if (!(area > 0)) continue;  // a degenerate triangle cannot be sampled (BSDF rays never hit it)
+    GpuLight light{};
+    light.triangle = static_cast<clpt_u32>(i);
+    light.cap_area = static_cast<float>(area);
+    out.lights.push_back(light);
+  }
+  std::vector<double> weights(out.lights.size(), 1.0);
+  if (out.lights.size() > sphere_lights) {
+    std::vector<double> power;
+    double total = 0;
+    for (const GpuLight& l : out.lights) {
+      const GpuMaterial& m = l.triangle == CLPT_LIGHT_SPHERE ? out.spheres[l.sphere].material
+                                                             : out.triangle_shading[l.triangle].material;
+      power.push_back(light_power(l, m.emission));
+      total += power.back();
+    }
+    if (total > 0) weights = power;
+  }
+  fill_light_pick(out.lights, weights);
+  for (const GpuLight& l : out.lights)
+    if (l.triangle != CLPT_LIGHT_SPHERE)
+      out.triangle_shading[l.triangle].light_area_density = static_cast<float>(double(l.pick_probability) / double(l.cap_area));
+}
+
 }  // namespace
+
+bool has_triangle_lights(const Scene& scene) {
+  for (const TriangleMesh& m : scene.meshes)
+    if (m.material.type == MaterialType::Emitter && !m.triangles.empty()) return true;
+  return false;
+}
 
 SurfaceFrame surface_frame(const Sphere& s, const Vec3& anchor) {
   const Vec3 towards_anchor = sub(anchor, s.center);
@@ -132,6 +178,7 @@ std::vector<GpuLight> light_caps(const Scene& scene) {
     light.sphere = static_cast<clpt_u32>(i);
     light.one_minus_cos_cap = static_cast<float>(one_minus_cos);
     light.cap_area = static_cast<float>(2 * pi * a.radius * a.radius * one_minus_cos);
+    light.triangle = CLPT_LIGHT_SPHERE;
     lights.push_back(light);
   }
   return lights;
@@ -182,6 +229,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
     for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);
     for (GpuLight& light : out.lights) light.sphere = new_index[light.sphere];
   }
+  add_triangle_lights(out);
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
   const Vec3 dir = normalize(sub(cam.look_at, cam.position));

@@ -17,7 +17,9 @@ struct DeviceScene {
   // the hierarchy's primitives in its leaf order.
   std::vector<GpuSphere> spheres;
   uint32_t loop_spheres = 0;  // spheres the kernels test in their loop (the first ones)
-  std::vector<GpuLight> lights;  // emitters that next-event estimation samples (light_caps())
+  // What next-event estimation samples (types.h, GpuLight): the emitter spheres' caps
+  // (light_caps()), then every emitting triangle of positive area; with the pick distribution.
+  std::vector<GpuLight> lights;
   // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
   std::vector<GpuTriangle> triangles;
   std::vector<GpuTriangleShading> triangle_shading;
@@ -56,6 +58,10 @@ LightSampling light_sampling_of(const RenderSettings& settings);  // from settin
 // unbiased and a smaller one only wastes fewer shadow rays.
 // Sampled as the scene's settings.light_sampling says.
 std::vector<GpuLight> light_caps(const Scene& scene);
+
+// Whether the scene has emitting triangles (a mesh whose material is an emitter): then next-event
+// estimation samples them too, and its kernels compile triangle lights (kernel_options.cpp).
+bool has_triangle_lights(const Scene& scene);
 
 // Minimum hit distance: 1e-5 of the camera-to-look-at distance (1.0e-4 for the book's scenes,
 // the value docs/numerics.md measured as robust there), so it scales with the scene; 2^-29 of that for

@@ -75,8 +75,8 @@ __kernel void probe_scene_hit(__global const GpuSphere* spheres, __global const 
     }
   } else {
     hit = scene_closest_hit(&scene, &params, o, d, -1);
-    near_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].x, -1);
-    far_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].y, -1);
+    near_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].x, -1, -1);
+    far_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].y, -1, -1);
   }
   out[2 * i] = (float4)(hit.t, (float)hit.sphere, (float)hit.triangle, 0.0f);
   out[2 * i + 1] = (float4)(near_blocked ? 1.0f : 0.0f, far_blocked ? 1.0f : 0.0f, 0.0f, 0.0f);
