@@ -85,6 +85,9 @@ CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
  * none) neither, in kernels with triangle lights. */
 CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
                               int skip, int skip_triangle, bool any_hit, Hit* hit) {
+#if !CLPT_HAS_TRIANGLE_LIGHTS
+  (void)skip_triangle; /* only a kernel with triangle lights skips a light's own triangle */
+#endif
   if (node_count == 0u) return;
   const Vec3 inv_d = inverse_direction(d);
   const ShearedRay ray = sheared_ray(o, d);
