@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders the mesh scenes' pictures in docs/ (docs/scenes.md shows them): the Cornell box
-# (docs/cornell-box.png, 256x256, 1024 spp: its small light is found by BSDF sampling alone
-# until next-event estimation samples emitting triangles) and the torus knot
+# (docs/cornell-box.png, 256x256, 1024 spp; next-event estimation samples its emitting
+# triangles) and the torus knot
 # (docs/torus-knot.png, 320x240, 128 spp), each with its scene's estimator (next-event
 # estimation) and the Sobol sampler, on the best device. The EXRs go to out/; only the PNG
 # previews are copied into docs/ (small enough to commit).
