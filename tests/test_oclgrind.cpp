@@ -17,8 +17,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <ostream>
+#include <utility>
 
 #include "cl/cl_context.h"
 #include "cl/cl_device.h"
@@ -267,6 +269,27 @@ TEST(OclgrindMixed, PoclAndOclgrindShareOneFilm) {
   EXPECT_LE(a.worst_mean_difference(), 1e-4) << a.describe();
 }
 
+// Renders make("oclgrind") and make("cpu"): no Oclgrind finding, `paths` paths traced on the
+// simulator, and PoCL's image within the specialised robust variants' same-seed bound (float
+// rounding only). Returns the two films, Oclgrind's first.
+std::pair<Film, Film> expect_clean_and_the_pocl_image(const std::function<RenderRequest(const std::string&)>& make,
+                                                      const std::string& label, uint64_t paths) {
+  RenderReport oclgrind_report, pocl_report;
+  StderrCapture capture("render");
+  Film on_oclgrind = run_render(make("oclgrind"), oclgrind_report);
+  const OclgrindFindings findings = capture.finish();
+  EXPECT_TRUE(findings.clean()) << label << ": Oclgrind reported (" << capture.path() << "): " << findings.summary();
+  EXPECT_NE(oclgrind_report.device.find("simulator"), std::string::npos) << oclgrind_report.device;
+  EXPECT_EQ(oclgrind_report.paths, paths);
+  Film on_pocl = run_render(make("cpu"), pocl_report);
+  const SameSeedAgreement a = same_seed_agreement(on_oclgrind.mean_rgb(), on_pocl.mean_rgb());
+  std::printf("%s: Oclgrind against PoCL, same seed: %s (%.1f s on Oclgrind)\n", label.c_str(), a.describe().c_str(),
+              oclgrind_report.render_seconds);
+  EXPECT_GE(a.close_fraction, 0.9939) << label << ": " << a.describe();
+  EXPECT_LE(a.worst_mean_difference(), 1e-6) << label << ": " << a.describe();
+  return {std::move(on_oclgrind), std::move(on_pocl)};
+}
+
 // The kernel with triangle lights (CLPT_HAS_TRIANGLE_LIGHTS: nee on a scene with an emitting
 // mesh; the covering set's scene has none) on Oclgrind: the Cornell box at 11x9 (odd, as above),
 // 8 jittered samples, in the per-path megakernel (what a GPU runs) and the wavefront. No finding
@@ -285,19 +308,7 @@ TEST(OclgrindAreaLights, CornellBoxNeeHasNoFindingsAndThePoclImage) {
       request.paths_in_flight = 64;
       return request;
     };
-    RenderReport oclgrind_report, pocl_report;
-    StderrCapture capture("render");
-    const Film on_oclgrind = run_render(request_on("oclgrind"), oclgrind_report);
-    const OclgrindFindings findings = capture.finish();
-    EXPECT_TRUE(findings.clean()) << form_name << ": Oclgrind reported (" << capture.path() << "): " << findings.summary();
-    EXPECT_NE(oclgrind_report.device.find("simulator"), std::string::npos) << oclgrind_report.device;
-    EXPECT_EQ(oclgrind_report.paths, 11u * 9u * 8u);
-    const Film on_pocl = run_render(request_on("cpu"), pocl_report);
-    const SameSeedAgreement a = same_seed_agreement(on_oclgrind.mean_rgb(), on_pocl.mean_rgb());
-    std::printf("Cornell box, nee, %s: Oclgrind against PoCL, same seed: %s (%.1f s on Oclgrind)\n", form_name,
-                a.describe().c_str(), oclgrind_report.render_seconds);
-    EXPECT_GE(a.close_fraction, 0.9939) << form_name << ": " << a.describe();
-    EXPECT_LE(a.worst_mean_difference(), 1e-6) << form_name << ": " << a.describe();
+    expect_clean_and_the_pocl_image(request_on, std::string("Cornell box, nee, ") + form_name, 11u * 9u * 8u);
   }
 }
 
@@ -319,18 +330,9 @@ TEST(OclgrindAdaptive, SlottedPassesInBothForms) {
       request.paths_in_flight = 64;
       return request;
     };
-    RenderReport oclgrind_report, pocl_report;
-    StderrCapture capture("render");
-    const Film on_oclgrind = run_render(request_on("oclgrind"), oclgrind_report);
-    const OclgrindFindings findings = capture.finish();
-    EXPECT_TRUE(findings.clean()) << "Oclgrind reported (" << capture.path() << "): " << findings.summary();
-    EXPECT_EQ(oclgrind_report.paths, uint64_t(kWidth) * kHeight * 20);
-    const Film on_pocl = run_render(request_on("cpu"), pocl_report);
+    const auto [on_oclgrind, on_pocl] = expect_clean_and_the_pocl_image(
+        request_on, std::string("adaptive, ") + execution_form_name(form), uint64_t(kWidth) * kHeight * 20);
     EXPECT_EQ(on_oclgrind.half1_samples(), on_pocl.half1_samples());  // the same allocation
-    const SameSeedAgreement a = same_seed_agreement(on_oclgrind.mean_rgb(), on_pocl.mean_rgb());
-    std::printf("adaptive, %s: Oclgrind against PoCL, same seed: %s\n", execution_form_name(form), a.describe().c_str());
-    EXPECT_GE(a.close_fraction, 0.9939) << a.describe();
-    EXPECT_LE(a.worst_mean_difference(), 1e-6) << a.describe();
   }
 }
 
