@@ -14,7 +14,6 @@
 
 #include "render/adaptive_sampling.h"
 #include "render/film.h"
-#include "render/limits.h"
 #include "render/pass_schedule.h"
 
 namespace clpt::test {
@@ -58,23 +57,13 @@ Simulated simulate(uint32_t width, uint32_t height, PassRequest request, double 
   Film& film = sim.film;
   PassMeasurements measured;
   PassScheduleState state;
-  std::vector<uint32_t> counts;
-  uint64_t counts_start = 0;
-  const uint64_t stop = request.target_spp ? request.target_spp : kMaxSpp;
+  AdaptiveSlotTable table;
   for (int guard = 0; guard < 100000; ++guard) {
     const NextPass next = plan_next_pass(film, request, measured, state);
     if (next.stop != StopReason::None) return sim;
     sim.passes.push_back(next);
     if (next.adaptive) {
-      const std::optional<AdaptiveRound> round = adaptive_round(film, stop, request.granularity);
-      EXPECT_TRUE(round.has_value());
-      if (!round) return sim;
-      if (counts.empty() || counts_start != round->start_spp) {
-        counts = adaptive_slot_counts(film, round->slot_total(film.pixel_count(), request.granularity));
-        counts_start = round->start_spp;
-      }
-      const std::vector<GpuSampleSlot> slots =
-          adaptive_pass_slots(film, counts, request.granularity, next.slot_begin, next.slot_count);
+      const std::vector<GpuSampleSlot> slots = table.pass_slots(film, next, request);
       EXPECT_EQ(slots.size(), next.slot_count);
       std::vector<GpuPixelPass> results;
       for (const GpuSampleSlot& s : slots) {

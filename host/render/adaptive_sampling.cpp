@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "render/pass_schedule.h"
 
@@ -127,6 +128,17 @@ std::vector<GpuSampleSlot> adaptive_pass_slots(const Film& film, const std::vect
     }
   }
   return slots;
+}
+
+std::vector<GpuSampleSlot> AdaptiveSlotTable::pass_slots(const Film& film, const NextPass& next,
+                                                         const PassRequest& request) {
+  const std::optional<AdaptiveRound> round = adaptive_round(film, stop_spp(request), request.granularity);
+  if (!round) throw std::logic_error("AdaptiveSlotTable: an adaptive pass outside a round");
+  if (counts_.empty() || round_start_ != round->start_spp) {
+    counts_ = adaptive_slot_counts(film, round->slot_total(film.pixel_count(), request.granularity));
+    round_start_ = round->start_spp;
+  }
+  return adaptive_pass_slots(film, counts_, request.granularity, next.slot_begin, next.slot_count);
 }
 
 }  // namespace clpt

@@ -33,6 +33,7 @@
 
 #include "kernels/types.h"
 #include "render/film.h"
+#include "render/pass_schedule.h"
 
 namespace clpt {
 
@@ -71,5 +72,18 @@ constexpr double kAdaptiveWeightCap = 8.0;
 // in this pass); `film` must hold the table's first `first` slots already.
 std::vector<GpuSampleSlot> adaptive_pass_slots(const Film& film, const std::vector<uint32_t>& counts, uint32_t granularity,
                                                uint64_t first, uint64_t count);
+
+// The slots of a render's adaptive passes, as the coordinator computes them: each round's counts
+// once (adaptive_slot_counts on the film at the round's start), each pass's slots from them.
+class AdaptiveSlotTable {
+ public:
+  // The slots of `next` (an adaptive pass that plan_next_pass gave for `film` and `request`).
+  // Throws std::logic_error when the film is in no round.
+  std::vector<GpuSampleSlot> pass_slots(const Film& film, const NextPass& next, const PassRequest& request);
+
+ private:
+  std::vector<uint32_t> counts_;  // of the round that starts at round_start_
+  uint64_t round_start_ = 0;
+};
 
 }  // namespace clpt

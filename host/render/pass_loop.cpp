@@ -3,14 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <optional>
-#include <stdexcept>
 #include <string>
 
 #include "render/adaptive_sampling.h"
 #include "render/device_pool.h"
 #include "render/error_estimate.h"
-#include "render/limits.h"
 #include "render/progress.h"
 #include "util/clock.h"
 
@@ -23,10 +20,6 @@ void print_notices(PassTracer& tracer, Progress& progress) {
     progress.finish();
     std::fprintf(stderr, "clpt: %s\n", notice.c_str());
   }
-}
-
-uint64_t stop_spp_of(const PassRequest& request) {
-  return request.target_spp ? std::min(request.target_spp, kMaxSpp) : kMaxSpp;
 }
 
 bool interrupted(const PassLoopOptions& options) {
@@ -72,9 +65,8 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
   GpuRenderParams pass = params;
   PassMeasurements measured;
   PassScheduleState schedule;
-  std::vector<uint32_t> round_counts;  // adaptive: the slot counts of the round that starts at
-  uint64_t round_counts_start = 0;     // this ladder point
-  std::vector<GpuSampleSlot> slots;
+  AdaptiveSlotTable slot_table;
+  std::vector<GpuSampleSlot> slots;  // the adaptive pass's
   for (;;) {
     print_notices(tracer, progress);
     measured.elapsed_s = seconds_since(t0);
@@ -91,17 +83,8 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
     pass.samples_per_pass = decision.next.samples;
     pass.slotted = decision.next.adaptive ? 1u : 0u;
     pass.pixel_count = decision.next.adaptive ? decision.next.slot_count : params.pixel_count;
-    // An adaptive pass's slots: the coordinator's round table (adaptive_sampling.h), computed once a round.
-    if (decides && decision.next.adaptive) {
-      const std::optional<AdaptiveRound> round = adaptive_round(film, stop_spp_of(options.request), options.request.granularity);
-      if (!round) throw std::logic_error("run_passes: an adaptive pass outside a round");
-      if (round_counts_start != round->start_spp || round_counts.empty()) {
-        round_counts = adaptive_slot_counts(film, round->slot_total(film.pixel_count(), options.request.granularity));
-        round_counts_start = round->start_spp;
-      }
-      slots = adaptive_pass_slots(film, round_counts, options.request.granularity, decision.next.slot_begin,
-                                  decision.next.slot_count);
-    }
+    // An adaptive pass's slots: the coordinator's round table (adaptive_sampling.h).
+    if (decides && decision.next.adaptive) slots = slot_table.pass_slots(film, decision.next, options.request);
     const Clock::time_point pass_start = Clock::now();
     tracer.trace(pass, film, decision.next.adaptive ? &slots : nullptr);
     const double pass_spp = double(pass.samples_per_pass) * pass.pixel_count / std::max<uint32_t>(params.pixel_count, 1);

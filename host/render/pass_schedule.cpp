@@ -76,11 +76,15 @@ void plan_adaptive_pass(const Film& film, uint64_t stop_spp, uint32_t g, uint32_
 
 }  // namespace
 
+uint64_t stop_spp(const PassRequest& request) {
+  return request.target_spp ? std::min(request.target_spp, kMaxSpp) : kMaxSpp;
+}
+
 NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
                         PassScheduleState& state) {
   NextPass next;
   const uint64_t spp = film.samples_per_pixel();
-  const uint64_t stop_spp = request.target_spp ? std::min(request.target_spp, kMaxSpp) : kMaxSpp;
+  const uint64_t stop_spp = clpt::stop_spp(request);
   const uint32_t g = std::max<uint32_t>(request.granularity, 1);
   next.estimate = estimate_error(film);
   next.half = film.next_half();

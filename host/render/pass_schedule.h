@@ -76,6 +76,9 @@ struct NextPass {
   uint64_t predicted_spp = 0;
 };
 
+// The sample count at which `request` stops: its target_spp, or kMaxSpp when it has none.
+uint64_t stop_spp(const PassRequest& request);
+
 // Deterministic: the same film, request, measurements and state give the same answer. Updates
 // `state` at check points.
 NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
