@@ -46,7 +46,17 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   path.alive = active ? 1 : 0;
   for (;;) {
     PathState next = path;
-    path_shade(&next, path_intersect(&path, &scene, &params), &scene, &params);
+#if CLPT_HAS_BVH
+    /* The traversal loop runs scalar (it is data dependent); the barriers keep it in a region of
+     * its own, so the sphere loop before and the shading after still run 8 paths per instruction. */
+    Hit hit = path_intersect_loop(&path, &scene, &params);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    path_intersect_hierarchy(&path, &scene, &params, &hit);
+    barrier(CLK_LOCAL_MEM_FENCE);
+#else
+    const Hit hit = path_intersect(&path, &scene, &params);
+#endif
+    path_shade(&next, hit, &scene, &params);
     path = path_select(path.alive != 0, next, path);
     barrier(CLK_LOCAL_MEM_FENCE);
     alive_of[lid] = (uint)path.alive;

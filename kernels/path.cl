@@ -97,6 +97,17 @@ CLPT_INLINE Hit path_intersect(const PathState* path, const SceneBuffers* scene,
   return scene_closest_hit(scene, params, path->origin, path->direction, path->skip_sphere);
 }
 
+/* path_intersect in two halves, for a caller that puts a barrier between them (the lockstep
+ * megakernel): the loop's spheres, then the hierarchy narrowing that hit. Together they are
+ * path_intersect exactly. */
+CLPT_INLINE Hit path_intersect_loop(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params) {
+  return scene_loop_hit(scene, params, path->origin, path->direction, path->skip_sphere);
+}
+CLPT_INLINE void path_intersect_hierarchy(const PathState* path, const SceneBuffers* scene,
+                                          const GpuRenderParams* params, Hit* hit) {
+  scene_hierarchy_hit(scene, params, path->origin, path->direction, path->skip_sphere, hit);
+}
+
 /* Next direction and throughput weight at a non-emitting surface. Materials left out of the
  * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
 CLPT_INLINE Vec3 material_sample(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
