@@ -94,13 +94,17 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
   const Vec3 inv_box = v3_unpaired(inverse_direction(d));
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
+  real stack_entry[CLPT_BVH_STACK]; /* each pushed node's entry distance, measured when pushed */
   uint depth = 0u;
   uint node = 0u;
-  bool done = box_entry(&scene->nodes[0], o_box, inv_box, hit->t) >= CLPT_NO_HIT;
+  real node_entry = box_entry(&scene->nodes[0], o_box, inv_box, hit->t);
+  bool done = node_entry >= CLPT_NO_HIT;
   while (!done) {
     __global const GpuBvhNode* n = &scene->nodes[node];
     bool pop = true;
-    if (n->count == 0u) {
+    if (node_entry >= hit->t) {
+      /* A node pushed before a nearer hit was found: nothing in its box can be nearer. */
+    } else if (n->count == 0u) {
       const uint a = node + 1u, b = n->first;
       const real ta = box_entry(&scene->nodes[a], o_box, inv_box, hit->t);
       const real tb = box_entry(&scene->nodes[b], o_box, inv_box, hit->t);
@@ -109,7 +113,12 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
         pop = false;
         const bool a_first = hit_a && (!hit_b || ta <= tb);
         node = a_first ? a : b;
-        if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
+        node_entry = a_first ? ta : tb;
+        if (hit_a && hit_b) {
+          stack[depth] = a_first ? b : a;
+          stack_entry[depth] = a_first ? tb : ta;
+          ++depth;
+        }
       }
     } else {
       const uint first = n->first;
@@ -141,9 +150,9 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
     }
     if (pop && !done) {
       done = depth == 0u;
-      node = done ? 0u : stack[--depth];
-      /* A popped node may lie behind a hit found since it was pushed: its children's boxes are
-       * tested against hit->t when it is opened, and its own leaf primitives test t < hit->t. */
+      depth -= done ? 0u : 1u;
+      node = done ? 0u : stack[depth];
+      node_entry = done ? (real)0 : stack_entry[depth];
     }
   }
 }
