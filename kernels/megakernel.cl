@@ -51,12 +51,14 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
      * own (the closest hit, then nee's shadow ray), so the sphere loop and the shading between
      * them still run 8 paths per instruction. path_shade's halves, as path.cl composes them. */
     Hit hit = path_intersect_loop(&path, &scene, &params);
+    hit.t = path.alive ? hit.t : (real)0; /* an ended path's traversal stops at the root's box */
     barrier(CLK_LOCAL_MEM_FENCE);
     path_intersect_hierarchy(&path, &scene, &params, &hit);
     barrier(CLK_LOCAL_MEM_FENCE);
     ShadowQuery shadow;
     path_shade_surface(&next, hit, &scene, &params, &shadow);
 #if CLPT_NEE_COMPILED
+    shadow.t_max = path.alive ? shadow.t_max : (real)0; /* likewise for its shadow ray */
     barrier(CLK_LOCAL_MEM_FENCE);
     const bool blocked = shadow_query_blocked(&shadow, &scene, &params);
     barrier(CLK_LOCAL_MEM_FENCE);
