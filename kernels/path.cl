@@ -323,8 +323,8 @@ CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
  * path_shade = path_shade_surface, shadow_query_blocked, path_shade_light, in that order; the
  * shadow ray's light is the last thing added to the radiance, so the split changes no sum. */
 CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
-                                    ShadowQuery* q) {
-  *q = no_shadow_query();
+                                    ShadowQuery* shadow) {
+  *shadow = no_shadow_query();
   path->segments += 1u;
   const bool missed = hit.sphere < 0 && hit.triangle < 0;
   const int index = hit.sphere < 0 ? 0 : hit.sphere;
@@ -370,8 +370,8 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
     uint shadow_segments = 0u;
-    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments, q);
-    q->light = v3_select(scatters, v3_mul(path->throughput, light), v3_splat((real)0));
+    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments, shadow);
+    shadow->light = v3_select(scatters, v3_mul(path->throughput, light), v3_splat((real)0));
     path->segments += scatters ? shadow_segments : 0u;
     real next_pdf;
     (void)material_eval(material, path->direction, normal, next, &next_pdf);
