@@ -94,16 +94,17 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
   const Vec3 inv_box = v3_unpaired(inverse_direction(d));
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
-  real stack_entry[CLPT_BVH_STACK]; /* each pushed node's entry distance, measured when pushed */
   uint depth = 0u;
   uint node = 0u;
-  real node_entry = box_entry(&scene->nodes[0], o_box, inv_box, hit->t);
-  bool done = node_entry >= CLPT_NO_HIT;
+  bool done = box_entry(&scene->nodes[0], o_box, inv_box, hit->t) >= CLPT_NO_HIT;
+  bool popped = false; /* the current node came off the stack */
   while (!done) {
     __global const GpuBvhNode* n = &scene->nodes[node];
     bool pop = true;
-    if (node_entry >= hit->t) {
-      /* A node pushed before a nearer hit was found: nothing in its box can be nearer. */
+    if (popped && box_entry(n, o_box, inv_box, hit->t) >= CLPT_NO_HIT) {
+      /* Pushed before a nearer hit was found, and now wholly behind it: not opened. Its box is
+       * tested again rather than its entry distance kept on the stack, which would double the
+       * stack (a GPU's scratch memory) for one box test per pop. */
     } else if (n->count == 0u) {
       const uint a = node + 1u, b = n->first;
       const real ta = box_entry(&scene->nodes[a], o_box, inv_box, hit->t);
@@ -113,12 +114,7 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
         pop = false;
         const bool a_first = hit_a && (!hit_b || ta <= tb);
         node = a_first ? a : b;
-        node_entry = a_first ? ta : tb;
-        if (hit_a && hit_b) {
-          stack[depth] = a_first ? b : a;
-          stack_entry[depth] = a_first ? tb : ta;
-          ++depth;
-        }
+        if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
       }
     } else {
       const uint first = n->first;
@@ -148,11 +144,10 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       }
       done = any_hit && (hit->sphere >= 0 || hit->triangle >= 0);
     }
-    if (pop && !done) {
+    popped = pop && !done;
+    if (popped) {
       done = depth == 0u;
-      depth -= done ? 0u : 1u;
-      node = done ? 0u : stack[depth];
-      node_entry = done ? (real)0 : stack_entry[depth];
+      node = done ? 0u : stack[--depth];
     }
   }
 }
