@@ -89,19 +89,26 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
   (void)skip_triangle; /* only a kernel with triangle lights skips a light's own triangle */
 #endif
   if (node_count == 0u) return;
-  const Vec3 inv_d = inverse_direction(d);
+  /* The slab test's copies of the ray, which SLP may pair without harm (maths.cl, v3_unpaired). */
+  const Vec3 o_box = v3_unpaired(o);
+  const Vec3 inv_box = v3_unpaired(inverse_direction(d));
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
   uint depth = 0u;
   uint node = 0u;
-  bool done = box_entry(&scene->nodes[0], o, inv_d, hit->t) >= CLPT_NO_HIT;
+  bool done = box_entry(&scene->nodes[0], o_box, inv_box, hit->t) >= CLPT_NO_HIT;
+  bool popped = false; /* the current node came off the stack */
   while (!done) {
     __global const GpuBvhNode* n = &scene->nodes[node];
     bool pop = true;
-    if (n->count == 0u) {
+    if (popped && box_entry(n, o_box, inv_box, hit->t) >= CLPT_NO_HIT) {
+      /* Pushed before a nearer hit was found, and now wholly behind it: not opened. Its box is
+       * tested again rather than its entry distance kept on the stack, which would double the
+       * stack (a GPU's scratch memory) for one box test per pop. */
+    } else if (n->count == 0u) {
       const uint a = node + 1u, b = n->first;
-      const real ta = box_entry(&scene->nodes[a], o, inv_d, hit->t);
-      const real tb = box_entry(&scene->nodes[b], o, inv_d, hit->t);
+      const real ta = box_entry(&scene->nodes[a], o_box, inv_box, hit->t);
+      const real tb = box_entry(&scene->nodes[b], o_box, inv_box, hit->t);
       const bool hit_a = ta < CLPT_NO_HIT, hit_b = tb < CLPT_NO_HIT;
       if (hit_a || hit_b) {
         pop = false;
@@ -137,11 +144,10 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       }
       done = any_hit && (hit->sphere >= 0 || hit->triangle >= 0);
     }
-    if (pop && !done) {
+    popped = pop && !done;
+    if (popped) {
       done = depth == 0u;
       node = done ? 0u : stack[--depth];
-      /* A popped node may lie behind a hit found since it was pushed: its children's boxes are
-       * tested against hit->t when it is opened, and its own leaf primitives test t < hit->t. */
     }
   }
 }
@@ -155,13 +161,33 @@ CLPT_INLINE Hit no_hit(void) {
   return hit;
 }
 
+/* Closest hit over the loop's spheres alone (loop-free once unrolled: the first half of
+ * scene_closest_hit, which the lockstep megakernel runs in its own vectorised region). */
+CLPT_INLINE Hit scene_loop_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d, int skip) {
+  return scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
+}
+
+/* Narrows `hit` (the loop's closest hit, or no_hit()) to the hierarchy's closest hit before hit->t:
+ * the second half of scene_closest_hit. Without a hierarchy: nothing. */
+CLPT_INLINE void scene_hierarchy_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d,
+                                     int skip, Hit* hit) {
+#if CLPT_HAS_BVH
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, -1, false, hit);
+#else
+  (void)scene;
+  (void)params;
+  (void)o;
+  (void)d;
+  (void)skip;
+  (void)hit;
+#endif
+}
+
 /* Closest hit over the loop's spheres and the hierarchy. */
 CLPT_INLINE Hit scene_closest_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d,
                                   int skip) {
-  Hit hit = scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
-#if CLPT_HAS_BVH
-  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, -1, false, &hit);
-#endif
+  Hit hit = scene_loop_hit(scene, params, o, d, skip);
+  scene_hierarchy_hit(scene, params, o, d, skip, &hit);
   return hit;
 }
 

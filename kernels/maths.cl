@@ -66,6 +66,25 @@ CLPT_INLINE Vec3 v3(real x, real y, real z) {
   return v;
 }
 CLPT_INLINE Vec3 v3_splat(real s) { return v3(s, s, s); }
+
+/* v itself, passed through memory that LLVM's SLP vectoriser cannot see through, in the CPU's
+ * lockstep megakernel (CLPT_LOCKSTEP_GROUP); elsewhere v unchanged, at no cost. Why: PoCL runs
+ * SLP over each work-item's code before it builds the work-item loops, and where SLP pairs the
+ * x and y of a value into a <2 x float> (the slab test's per-axis min/max invites it), the
+ * vector-typed value travels into the path state, and PoCL's work-item vectoriser refuses every
+ * region that holds it (measured on the hierarchy kernel: no region vectorised, 20 with the copy;
+ * docs/performance.md "Traversal"). A volatile copy costs three stores and three loads. */
+CLPT_INLINE Vec3 v3_unpaired(Vec3 v) {
+#if defined(CLPT_LOCKSTEP_GROUP) && CLPT_LOCKSTEP_GROUP
+  volatile real c[3];
+  c[0] = v.x;
+  c[1] = v.y;
+  c[2] = v.z;
+  return v3(c[0], c[1], c[2]);
+#else
+  return v;
+#endif
+}
 CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], v[1], v[2]); }
 CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], v[1], v[2]); }
 CLPT_INLINE Vec3 v3_add(Vec3 a, Vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }

@@ -46,7 +46,29 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   path.alive = active ? 1 : 0;
   for (;;) {
     PathState next = path;
+#if CLPT_HAS_BVH
+    /* A traversal loop runs scalar (it is data dependent); barriers keep each in a region of its
+     * own (the closest hit, then nee's shadow ray), so the sphere loop and the shading between
+     * them still run 8 paths per instruction. path_shade's halves, as path.cl composes them. */
+    Hit hit = path_intersect_loop(&path, &scene, &params);
+    hit.t = path.alive ? hit.t : (real)0; /* an ended path's traversal stops at the root's box */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    path_intersect_hierarchy(&path, &scene, &params, &hit);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    ShadowQuery shadow;
+    path_shade_surface(&next, hit, &scene, &params, &shadow);
+#if CLPT_NEE_COMPILED
+    shadow.t_max = path.alive ? shadow.t_max : (real)0; /* likewise for its shadow ray */
+    barrier(CLK_LOCAL_MEM_FENCE);
+    const bool blocked = shadow_query_blocked(&shadow, &scene, &params);
+    barrier(CLK_LOCAL_MEM_FENCE);
+#else
+    const bool blocked = false;
+#endif
+    path_shade_light(&next, &shadow, blocked);
+#else
     path_shade(&next, path_intersect(&path, &scene, &params), &scene, &params);
+#endif
     path = path_select(path.alive != 0, next, path);
     barrier(CLK_LOCAL_MEM_FENCE);
     alive_of[lid] = (uint)path.alive;

@@ -97,6 +97,17 @@ CLPT_INLINE Hit path_intersect(const PathState* path, const SceneBuffers* scene,
   return scene_closest_hit(scene, params, path->origin, path->direction, path->skip_sphere);
 }
 
+/* path_intersect in two halves, for a caller that puts a barrier between them (the lockstep
+ * megakernel): the loop's spheres, then the hierarchy narrowing that hit. Together they are
+ * path_intersect exactly. */
+CLPT_INLINE Hit path_intersect_loop(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params) {
+  return scene_loop_hit(scene, params, path->origin, path->direction, path->skip_sphere);
+}
+CLPT_INLINE void path_intersect_hierarchy(const PathState* path, const SceneBuffers* scene,
+                                          const GpuRenderParams* params, Hit* hit) {
+  scene_hierarchy_hit(scene, params, path->origin, path->direction, path->skip_sphere, hit);
+}
+
 /* Next direction and throughput weight at a non-emitting surface. Materials left out of the
  * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
 CLPT_INLINE Vec3 material_sample(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
@@ -211,11 +222,40 @@ CLPT_INLINE Vec3 leaving_origin(const SurfacePoint* s, Vec3 dir) {
 #endif
 }
 
+/* A shadow ray whose answer waits on the hierarchy, and the light it brings if nothing of the
+ * hierarchy blocks it (throughput applied; zero when there is nothing to bring, and then the ray
+ * need not be traced). Filled by path_shade_surface, answered by shadow_query_blocked, used by
+ * path_shade_light: the three halves of path_shade, which the lockstep megakernel separates by
+ * barriers so that the any-hit traversal loop runs in a region of its own. */
+typedef struct ShadowQuery {
+  Vec3 origin;
+  Vec3 direction;
+  Vec3 light;
+  real t_max;
+  int skip;
+  int skip_triangle;
+  CLPT_ABI_PAD(int, 1)
+} ShadowQuery;
+
+CLPT_INLINE ShadowQuery no_shadow_query(void) {
+  ShadowQuery q;
+  q.origin = v3_splat((real)0);
+  q.direction = v3_splat((real)0);
+  q.light = v3_splat((real)0);
+  q.t_max = (real)0;
+  q.skip = -1;
+  q.skip_triangle = -1;
+  return q;
+}
+
 /* Next-event estimation at surface point `surface` of sphere `index` (-1: a triangle), material m,
- * for a path arriving along d: one shadow ray to a light sample; returns the MIS-weighted
- * radiance it brings (throughput not yet applied) and counts the shadow ray in *segments. */
+ * for a path arriving along d: one shadow ray to a light sample, tested here against the loop's
+ * spheres; returns the MIS-weighted radiance it brings when the hierarchy does not block it
+ * (throughput not yet applied), fills the ray into *q for that test, and counts the shadow ray
+ * in *segments. */
 CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params,
-                            int index, __global const GpuMaterial* m, const SurfacePoint* surface, uint* segments) {
+                            int index, __global const GpuMaterial* m, const SurfacePoint* surface, uint* segments,
+                            ShadowQuery* q) {
   /* With no light, light_sample reads the buffer's placeholder entry and returns pdf 0 (no early
    * return: a branch here would stop PoCL's vectoriser). */
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample,
@@ -244,8 +284,11 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
 #endif
   const Hit shadow = scene_intersect(scene->spheres, params->sphere_count, origin, shadow_direction,
                                      params->ray_epsilon, skip);
-  const bool hierarchy_blocks =
-      scene_hierarchy_occluded(scene, params, origin, shadow_direction, near_light, skip, skip_triangle);
+  q->origin = origin;
+  q->direction = shadow_direction;
+  q->t_max = near_light;
+  q->skip = skip;
+  q->skip_triangle = skip_triangle;
   *segments += 1u;
   /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
    * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
@@ -259,8 +302,7 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
   const Vec3 emission = v3_load_global(scene->spheres[ls.sphere].material.emission);
 #endif
-  const bool visible = ls.pdf > (real)0 && loop_clear && !hierarchy_blocks && !v3_is_zero(f_cos) &&
-                       leaves_consistently(surface, ls.direction);
+  const bool visible = ls.pdf > (real)0 && loop_clear && !v3_is_zero(f_cos) && leaves_consistently(surface, ls.direction);
   const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
   return v3_scale(v3_mul(f_cos, emission), weight);
 }
@@ -276,8 +318,13 @@ CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
 /* One shading event: a miss ends the path (black background); an emitter adds its emission
  * (MIS-weighted under nee) and ends it (emitters do not reflect); past max_bounces the path ends;
  * otherwise, under nee, a shadow ray adds the light it finds, and the material scatters the path.
- * Written as selects over the cases, not branches, so that PoCL vectorises it. */
-CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
+ * Written as selects over the cases, not branches, so that PoCL vectorises it.
+ *
+ * path_shade = path_shade_surface, shadow_query_blocked, path_shade_light, in that order; the
+ * shadow ray's light is the last thing added to the radiance, so the split changes no sum. */
+CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
+                                    ShadowQuery* shadow) {
+  *shadow = no_shadow_query();
   path->segments += 1u;
   const bool missed = hit.sphere < 0 && hit.triangle < 0;
   const int index = hit.sphere < 0 ? 0 : hit.sphere;
@@ -323,8 +370,8 @@ CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene,
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
     uint shadow_segments = 0u;
-    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments);
-    path->radiance = v3_select(scatters, v3_add(path->radiance, v3_mul(path->throughput, light)), path->radiance);
+    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments, shadow);
+    shadow->light = v3_select(scatters, v3_mul(path->throughput, light), v3_splat((real)0));
     path->segments += scatters ? shadow_segments : 0u;
     real next_pdf;
     (void)material_eval(material, path->direction, normal, next, &next_pdf);
@@ -349,6 +396,30 @@ CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene,
   path->skip_sphere = scatters && sphere_index >= 0 && v3_dot(next, normal) > (real)0 ? sphere_index : -1;
   path->bounce += scatters ? 1u : 0u;
   path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
+}
+
+/* Whether the hierarchy blocks the shadow ray of *q (false when it brings nothing, or with no
+ * hierarchy). */
+CLPT_INLINE bool shadow_query_blocked(const ShadowQuery* q, const SceneBuffers* scene, const GpuRenderParams* params) {
+  return !v3_is_zero(q->light) &&
+         scene_hierarchy_occluded(scene, params, q->origin, q->direction, q->t_max, q->skip, q->skip_triangle);
+}
+
+/* Adds the shadow ray's light unless the hierarchy blocks it. */
+CLPT_INLINE void path_shade_light(PathState* path, const ShadowQuery* q, bool blocked) {
+#if CLPT_NEE_COMPILED
+  path->radiance = v3_select(blocked, path->radiance, v3_add(path->radiance, q->light));
+#else
+  (void)path; /* no shadow rays compiled: q is no_shadow_query() */
+  (void)q;
+  (void)blocked;
+#endif
+}
+
+CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
+  ShadowQuery q;
+  path_shade_surface(path, hit, scene, params, &q);
+  path_shade_light(path, &q, shadow_query_blocked(&q, scene, params));
 }
 
 #endif

@@ -20,11 +20,11 @@ doc = json.load(open(sys.argv[1]))
 rows = doc["rows"]
 assert len(rows) == 3, rows  # megakernel (lockstep, per path) and the wavefront once
 fields = {"key", "scene", "form", "loop", "kernel", "precision", "estimator", "device", "local_size", "paths_in_flight", "build_cold_s",
-          "build_cached_s", "paths_per_s", "segments_per_s", "stage_seconds"}
+          "build_cached_s", "paths_per_s", "segments_per_s", "paths_per_cpu_s", "stage_seconds"}
 for r in rows:
     missing = fields - r.keys()
     assert not missing, missing
-    for s in ("paths_per_s", "segments_per_s"):
+    for s in ("paths_per_s", "segments_per_s", "paths_per_cpu_s"):
         assert r[s]["min"] <= r[s]["median"] <= r[s]["max"] and r[s]["median"] > 0, r[s]
 assert sorted(r["loop"] for r in rows) == ["", "lockstep", "path"], rows
 assert len({r["key"] for r in rows}) == 3, rows

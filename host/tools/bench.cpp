@@ -100,15 +100,17 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
 
   GpuRenderParams params = make_params(scene, ds);
   params.samples_per_pass = std::min(c.spp, pool.max_samples_per_pass(params.pixel_count));
-  std::vector<double> paths_per_s, segments_per_s;
+  std::vector<double> paths_per_s, segments_per_s, paths_per_cpu_s;
   std::map<std::string, std::vector<double>> stage_runs;
   std::map<std::string, double> stage_before;
   for (int run = 0; run < c.warmup + c.repeat; ++run) {
     Film film(c.width, c.height);
     params.sample_begin = static_cast<cl_uint>(run) * params.samples_per_pass;
     const auto t0 = Clock::now();
+    const double cpu0 = process_cpu_seconds();
     pool.run_pass(params, film);
     const double s = seconds_since(t0);
+    const double cpu_s = process_cpu_seconds() - cpu0;
     for (const StageTime& t : pool.stage_times()) {
       if (run >= c.warmup) stage_runs[t.label].push_back(t.seconds - stage_before[t.label]);
       stage_before[t.label] = t.seconds;
@@ -116,9 +118,11 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
     if (run < c.warmup) continue;
     paths_per_s.push_back(double(film.total_samples()) / s);
     segments_per_s.push_back(double(film.total_segments()) / s);
+    paths_per_cpu_s.push_back(double(film.total_samples()) / std::max(cpu_s, 1e-9));
   }
   row.paths_per_s = spread_of(paths_per_s);
   row.segments_per_s = spread_of(segments_per_s);
+  row.paths_per_cpu_s = spread_of(paths_per_cpu_s);
   for (const auto& [label, v] : stage_runs) row.stage_seconds.emplace_back(label, spread_of(v).median);
   return row;
 }
@@ -241,18 +245,20 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", "scene", "form",
-                "loop", "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
-                "build cold/cached s", "device");
+  std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %s\n", "scene",
+                "form", "loop", "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
+                "M paths/CPU-s", "build cold/cached s", "device");
   o << line;
   for (const BenchRow& r : rows) {
     char build[32];
     std::snprintf(build, sizeof build, "%.2f/%.2f", r.build_cold_s, r.build_cached_s);
-    std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-13s %s\n", r.scene.c_str(),
-                  r.form.c_str(), r.loop.empty() ? "-" : r.loop.c_str(), r.kernel.c_str(), r.precision.c_str(),
-                  r.estimator.c_str(),
+    char per_cpu[32];
+    std::snprintf(per_cpu, sizeof per_cpu, "%.2f", r.paths_per_cpu_s.median * 1e-6);
+    std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %s\n",
+                  r.scene.c_str(), r.form.c_str(), r.loop.empty() ? "-" : r.loop.c_str(), r.kernel.c_str(),
+                  r.precision.c_str(), r.estimator.c_str(),
                   r.local_size ? std::to_string(r.local_size).c_str() : "auto",
-                  format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), build,
+                  format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), per_cpu, build,
                   r.device.c_str());
     o << line;
     if (!r.stage_seconds.empty()) {
@@ -302,7 +308,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
                           {"paths_per_s", spread(r.paths_per_s)},
-                          {"segments_per_s", spread(r.segments_per_s)},
+                          {"segments_per_s", spread(r.segments_per_s)}, {"paths_per_cpu_s", spread(r.paths_per_cpu_s)},
                           {"stage_seconds", stages}};
     if (!r.ranks.empty()) {
       row["ranks"] = nlohmann::json::array();

@@ -70,6 +70,9 @@ struct BenchRow {
   double bvh_build_s = 0;
   double device_bytes_per_triangle = 0;
   Spread paths_per_s, segments_per_s;
+  // Paths per CPU-second of this process (process_cpu_seconds over each timed pass): on a CPU
+  // device the figure that holds while other work shares the cores; on a GPU, host time only.
+  Spread paths_per_cpu_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
   std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty
   std::string key() const;  // identifies the row across runs (for --baseline); names a builder other than clpt
