@@ -15,7 +15,8 @@
  *                            cos, the pow polynomial below; the cheaper surface-point intersection
  *                            (intersect.cl)
  *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
- *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow
+ *   CLPT_PRECISION 2 double: real = double everywhere a path computes; double polynomials for
+ *                            sin, cos and pow (to the library's accuracy, and vectorisable)
  * Buffers of the scene stay float (camera-relative, so their rounding is relative to distances
  * inside the scene); random numbers stay 24-bit. */
 #ifndef CLPT_MATHS_CL
