@@ -67,25 +67,27 @@ CLPT_INLINE Vec3 v3(real x, real y, real z) {
   return v;
 }
 CLPT_INLINE Vec3 v3_splat(real s) { return v3(s, s, s); }
-/* Index of the y component of a float[3] in a buffer or in the parameters: 1. The double preset
- * reads it as get_work_dim() (1: every clpt kernel is launched over one dimension,
- * host/cl/cl_context.cpp), a value the compiler cannot prove. Why: PoCL runs LLVM's SLP
- * vectoriser on each work-item's code before it builds the work-item loops, and for doubles SLP
- * pairs the x and y of two adjacent float loads, widened to double, into <2 x double> (one
+/* The y component of a float[3] in a buffer or in the parameters, v[1]. The double preset reads
+ * it through a choice the compiler cannot resolve: get_global_size(1) is 1 (every clpt kernel is
+ * launched over one dimension, host/cl/cl_context.cpp, and OpenCL gives an unused dimension the
+ * size 1), so it is always v[1], and the other load costs a cached read. Why: PoCL runs LLVM's
+ * SLP vectoriser on each work-item's code before it builds the work-item loops, and for doubles
+ * SLP pairs the x and y of two adjacent float loads, widened to double, into <2 x double> (one
  * 128-bit load and convert); from there the pairs spread through the path's arithmetic and its
  * loop state, and a work-item loop holding vector-typed values is not vectorised ("instruction
- * return type cannot be vectorized"). With y's address unknown the pair is no longer adjacent,
- * SLP finds no profitable tree, and the work-item loop vectoriser runs 8 paths per AVX-512
- * instruction (docs/performance.md, "Presets"). For the work-item loop the load stays a uniform
- * or gathered scalar load as before. Floats are not paired (a <2 x float> is below SLP's minimum
- * register size), so the float presets keep the constant index. */
+ * return type cannot be vectorized"). With y no longer a plain load next to x, SLP finds no
+ * profitable tree and the work-item loop vectoriser runs 4 double paths per 256-bit instruction
+ * (docs/performance.md, "Presets"). A choice rather than a computed index: an index unknown at
+ * compile time puts a private array (the camera in the parameters) in scratch memory on a GPU.
+ * Floats are not paired (a <2 x float> is below SLP's minimum register size), so the float
+ * presets read v[1] directly. */
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
-#define CLPT_Y_INDEX ((uint)get_work_dim())
+#define CLPT_Y_OF(v) (get_global_size(1) == 1 ? (v)[1] : (v)[2])
 #else
-#define CLPT_Y_INDEX 1u
+#define CLPT_Y_OF(v) ((v)[1])
 #endif
-CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], v[CLPT_Y_INDEX], v[2]); }
-CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], v[CLPT_Y_INDEX], v[2]); }
+CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
+CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
 CLPT_INLINE Vec3 v3_add(Vec3 a, Vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 CLPT_INLINE Vec3 v3_sub(Vec3 a, Vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 CLPT_INLINE Vec3 v3_mul(Vec3 a, Vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
