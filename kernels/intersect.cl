@@ -30,16 +30,17 @@
 #include "types.h"
 #include "maths.cl"
 
-/* The sphere's geometry in `real`: the double preset adds the float remainders (types.h). */
+/* The sphere's geometry in `real`: the double preset adds the float remainders (types.h); y is
+ * read with CLPT_Y_OF (maths.cl: SLP would pair it with x). */
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 CLPT_INLINE Vec3 sphere_surface_point(__global const GpuSphere* s) {
   return v3((real)s->surface_point[0] + (real)s->surface_point_lo[0],
-            (real)s->surface_point[1] + (real)s->surface_point_lo[1],
+            (real)CLPT_Y_OF(s->surface_point) + (real)CLPT_Y_OF(s->surface_point_lo),
             (real)s->surface_point[2] + (real)s->surface_point_lo[2]);
 }
 CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) {
   return v3((real)s->surface_normal[0] + (real)s->surface_normal_lo[0],
-            (real)s->surface_normal[1] + (real)s->surface_normal_lo[1],
+            (real)CLPT_Y_OF(s->surface_normal) + (real)CLPT_Y_OF(s->surface_normal_lo),
             (real)s->surface_normal[2] + (real)s->surface_normal_lo[2]);
 }
 CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return (real)s->radius + (real)s->radius_lo; }

@@ -15,7 +15,8 @@
  *                            cos, the pow polynomial below; the cheaper surface-point intersection
  *                            (intersect.cl)
  *   CLPT_PRECISION 1 robust: real = float, IEEE maths, the polynomials below
- *   CLPT_PRECISION 2 double: real = double everywhere a path computes; library sin, cos, pow
+ *   CLPT_PRECISION 2 double: real = double everywhere a path computes; double polynomials for
+ *                            sin, cos and pow (to the library's accuracy, and vectorisable)
  * Buffers of the scene stay float (camera-relative, so their rounding is relative to distances
  * inside the scene); random numbers stay 24-bit. */
 #ifndef CLPT_MATHS_CL
@@ -66,6 +67,27 @@ CLPT_INLINE Vec3 v3(real x, real y, real z) {
   return v;
 }
 CLPT_INLINE Vec3 v3_splat(real s) { return v3(s, s, s); }
+/* The y component of a float[3] in a buffer or in the parameters, v[1]. The double preset reads
+ * it through a choice the compiler cannot resolve: get_global_size(1) is 1 (every clpt kernel is
+ * launched over one dimension, host/cl/cl_context.cpp, and OpenCL gives an unused dimension the
+ * size 1), so it is always v[1], and the other load costs a cached read. Why: PoCL runs LLVM's
+ * SLP vectoriser on each work-item's code before it builds the work-item loops, and for doubles
+ * SLP pairs the x and y of two adjacent float loads, widened to double, into <2 x double> (one
+ * 128-bit load and convert); from there the pairs spread through the path's arithmetic and its
+ * loop state, and a work-item loop holding vector-typed values is not vectorised ("instruction
+ * return type cannot be vectorized"). With y no longer a plain load next to x, SLP finds no
+ * profitable tree and the work-item loop vectoriser runs 4 double paths per 256-bit instruction
+ * (docs/performance.md, "Presets"). A choice rather than a computed index: an index unknown at
+ * compile time puts a private array (the camera in the parameters) in scratch memory on a GPU.
+ * Float loads are not paired (SLP finds no profitable <2 x float> tree there), so the float
+ * presets read v[1] directly; floats are paired where a reduction invites it (v3_unpaired). */
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+#define CLPT_Y_OF(v) (get_global_size(1) == 1 ? (v)[1] : (v)[2])
+#else
+#define CLPT_Y_OF(v) ((v)[1])
+#endif
+CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
+CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
 
 /* v itself, passed through memory that LLVM's SLP vectoriser cannot see through, in the CPU's
  * lockstep megakernel (CLPT_LOCKSTEP_GROUP); elsewhere v unchanged, at no cost. Why: PoCL runs
@@ -85,8 +107,6 @@ CLPT_INLINE Vec3 v3_unpaired(Vec3 v) {
   return v;
 #endif
 }
-CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], v[1], v[2]); }
-CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], v[1], v[2]); }
 CLPT_INLINE Vec3 v3_add(Vec3 a, Vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 CLPT_INLINE Vec3 v3_sub(Vec3 a, Vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 CLPT_INLINE Vec3 v3_mul(Vec3 a, Vec3 b) { return v3(a.x * b.x, a.y * b.y, a.z * b.z); }
@@ -116,56 +136,108 @@ CLPT_INLINE Float2 f2(real x, real y) {
 /* (cos 2 pi u, sin 2 pi u) for u in [0, 1]. */
 #if CLPT_PRECISION == CLPT_PRECISION_FAST
 CLPT_INLINE Float2 unit_circle(float u) { return f2(native_cos(2.0f * CLPT_PI * u), native_sin(2.0f * CLPT_PI * u)); }
-#elif CLPT_PRECISION == CLPT_PRECISION_DOUBLE
-CLPT_INLINE Float2 unit_circle(real u) { return f2(cos(2.0 * CLPT_PI * u), sin(2.0 * CLPT_PI * u)); }
 #else
-CLPT_INLINE Float2 unit_circle(float u) {
-  const float quadrant = rint(u * 4.0f);
-  const float x = 2.0f * CLPT_PI * (u - 0.25f * quadrant); /* in [-pi/4, pi/4] */
-  const float x2 = x * x;
-  const float s =
-      x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-  const float c =
-      1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 +
-                                                                          x2 * (-1.0f / 3628800)))));
+/* sin x and cos x for |x| <= pi/4 (x2 = x^2), Taylor polynomials. Float: to x^9 and x^10, about
+ * 2e-7 absolute. Double: to x^17 and x^18, whose first omitted terms are below 1e-19, so the
+ * result is as accurate as the library's; the library's sin and cos are calls (with a large-
+ * argument reduction) that PoCL cannot vectorise across work-items. */
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+CLPT_INLINE real sin_quarter_turn(real x, real x2) {
+  return x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+         x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800.0 + x2 * (-1.0 / 1307674368000.0 +
+         x2 * (1.0 / 355687428096000.0)))))))));
+}
+CLPT_INLINE real cos_quarter_turn(real x2) {
+  return 1.0 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800 +
+         x2 * (1.0 / 479001600 + x2 * (-1.0 / 87178291200.0 + x2 * (1.0 / 20922789888000.0 +
+         x2 * (-1.0 / 6402373705728000.0)))))))));
+}
+#else
+CLPT_INLINE float sin_quarter_turn(float x, float x2) {
+  return x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+}
+CLPT_INLINE float cos_quarter_turn(float x2) {
+  return 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320 + x2 * (-1.0f / 3628800)))));
+}
+#endif
+/* A quadrant reduction, then the polynomials on [-pi/4, pi/4]; branch-free. */
+CLPT_INLINE Float2 unit_circle(real u) {
+  const real quadrant = rint(u * (real)4);
+  const real x = (real)2 * CLPT_PI * (u - (real)0.25 * quadrant); /* in [-pi/4, pi/4] */
+  const real x2 = x * x;
+  const real s = sin_quarter_turn(x, x2);
+  const real c = cos_quarter_turn(x2);
   /* Rotate (c, s) by q quarter turns, with selects rather than branches. */
   const int q = ((int)quadrant) & 3;
-  const float odd_c = (q & 1) ? -s : c; /* q = 1: (-s, c); q = 3: (s, -c) after the sign below */
-  const float odd_s = (q & 1) ? c : s;
-  const float sign = (q & 2) ? -1.0f : 1.0f;
+  const real odd_c = (q & 1) ? -s : c; /* q = 1: (-s, c); q = 3: (s, -c) after the sign below */
+  const real odd_s = (q & 1) ? c : s;
+  const real sign = (q & 2) ? (real)-1 : (real)1;
   return f2(sign * odd_c, sign * odd_s);
 }
 #endif
 
-/* u^a for u in [0, 1] and a > 0, to about 3e-7 relative: log2 from the exponent bits and an
- * atanh series, exp2 from a Taylor polynomial and the exponent bits. The library pow is a call
- * PoCL cannot vectorise and its exp2/log2 use 2-wide vectors internally, which stop the vectoriser;
- * PoCL's native_powr likewise (the fast preset's Phong scenes ran 11x slower with it), so the fast
- * preset uses this polynomial too. */
+/* u^a for u in [0, 1] and a > 0: log2 from the exponent bits and an atanh series, exp2 from a
+ * Taylor polynomial and the exponent bits; about 3e-7 relative in float, 1e-15 in double. The
+ * library pow is a call PoCL cannot vectorise (its float exp2/log2 also use 2-wide vectors
+ * internally, which stop the vectoriser); PoCL's native_powr likewise (the fast preset's Phong
+ * scenes ran 11x slower with it), so every preset uses this. The series per precision: */
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
-CLPT_INLINE real pow_unit(real u, real a) { return u <= 0.0 ? 0.0 : pow(u, a); }
+typedef ulong real_bits;
+#define clpt_real_as_bits as_ulong
+#define clpt_bits_as_real as_double
+#define CLPT_MANTISSA_BITS 52
+#define CLPT_EXPONENT_BIAS 1023
+#define CLPT_MANTISSA_MASK 0x000fffffffffffffUL
+#define CLPT_SQRT2 1.4142135623730951
+#define CLPT_LOG2_E 1.4426950408889634
+#define CLPT_LN_2 0.6931471805599453
+/* ln m = 2 atanh f for |f| <= 0.1716: to f^21 (the next term is below 1e-18). */
+CLPT_INLINE real ln_atanh_series(real f, real f2) {
+  return 2.0 * f * (1.0 + f2 * (1.0 / 3 + f2 * (1.0 / 5 + f2 * (1.0 / 7 + f2 * (1.0 / 9 + f2 * (1.0 / 11 +
+         f2 * (1.0 / 13 + f2 * (1.0 / 15 + f2 * (1.0 / 17 + f2 * (1.0 / 19 + f2 * (1.0 / 21)))))))))));
+}
+/* e^z for z in [0, ln 2): to z^17 (the next term is below 1e-18). */
+CLPT_INLINE real exp_taylor(real z) {
+  return 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6 + z * (1.0 / 24 + z * (1.0 / 120 + z * (1.0 / 720 +
+         z * (1.0 / 5040 + z * (1.0 / 40320 + z * (1.0 / 362880 + z * (1.0 / 3628800 + z * (1.0 / 39916800 +
+         z * (1.0 / 479001600 + z * (1.0 / 6227020800.0 + z * (1.0 / 87178291200.0 + z * (1.0 / 1307674368000.0 +
+         z * (1.0 / 20922789888000.0 + z * (1.0 / 355687428096000.0)))))))))))))))));
+}
 #else
-CLPT_INLINE float pow_unit(float u, float a) {
-  const uint bits = as_uint(u);
-  int e = (int)(bits >> 23) - 127;
-  float m = as_float((bits & 0x007fffffu) | 0x3f800000u); /* [1, 2) */
-  const bool high = m > 1.41421356f;
-  m = high ? 0.5f * m : m;
-  e = high ? e + 1 : e;
-  const float f = (m - 1.0f) / (m + 1.0f); /* |f| <= 0.1716 */
-  const float f2 = f * f;
-  const float ln_m = 2.0f * f * (1.0f + f2 * (1.0f / 3 + f2 * (1.0f / 5 + f2 * (1.0f / 7 + f2 * (1.0f / 9)))));
-  const float y = a * ((float)e + ln_m * 1.44269504f); /* a log2(u) <= 0 */
-  const float whole = floor(y);
-  const float z = (y - whole) * 0.693147181f; /* 2^(y - whole) = e^z, z in [0, ln 2) */
-  const float exp_z =
-      1.0f + z * (1.0f + z * (0.5f + z * (1.0f / 6 + z * (1.0f / 24 + z * (1.0f / 120 + z * (1.0f / 720 +
-      z * (1.0f / 5040 + z * (1.0f / 40320 + z * (1.0f / 362880)))))))));
-  const int k = (int)whole;
-  const float scale = as_float((uint)(max(k, -126) + 127) << 23);
-  return (u <= 0.0f || k < -126) ? 0.0f : exp_z * scale;
+typedef uint real_bits;
+#define clpt_real_as_bits as_uint
+#define clpt_bits_as_real as_float
+#define CLPT_MANTISSA_BITS 23
+#define CLPT_EXPONENT_BIAS 127
+#define CLPT_MANTISSA_MASK 0x007fffffu
+#define CLPT_SQRT2 1.41421356f
+#define CLPT_LOG2_E 1.44269504f
+#define CLPT_LN_2 0.693147181f
+CLPT_INLINE real ln_atanh_series(real f, real f2) {
+  return 2.0f * f * (1.0f + f2 * (1.0f / 3 + f2 * (1.0f / 5 + f2 * (1.0f / 7 + f2 * (1.0f / 9)))));
+}
+CLPT_INLINE real exp_taylor(real z) {
+  return 1.0f + z * (1.0f + z * (0.5f + z * (1.0f / 6 + z * (1.0f / 24 + z * (1.0f / 120 + z * (1.0f / 720 +
+         z * (1.0f / 5040 + z * (1.0f / 40320 + z * (1.0f / 362880)))))))));
 }
 #endif
+CLPT_INLINE real pow_unit(real u, real a) {
+  const real_bits bits = clpt_real_as_bits(u);
+  int e = (int)(bits >> CLPT_MANTISSA_BITS) - CLPT_EXPONENT_BIAS;
+  real m = clpt_bits_as_real((bits & CLPT_MANTISSA_MASK) | ((real_bits)CLPT_EXPONENT_BIAS << CLPT_MANTISSA_BITS)); /* [1, 2) */
+  const bool high = m > CLPT_SQRT2;
+  m = high ? (real)0.5 * m : m;
+  e = high ? e + 1 : e;
+  const real f = (m - (real)1) / (m + (real)1); /* |f| <= 0.1716 */
+  const real ln_m = ln_atanh_series(f, f * f);
+  const real y = a * ((real)e + ln_m * CLPT_LOG2_E); /* a log2(u) <= 0 */
+  const real whole = floor(y);
+  const real exp_z = exp_taylor((y - whole) * CLPT_LN_2); /* 2^(y - whole) = e^z, z in [0, ln 2) */
+  const int k = (int)whole;
+  const int min_exponent = 1 - CLPT_EXPONENT_BIAS;
+  const real scale = clpt_bits_as_real((real_bits)(max(k, min_exponent) + CLPT_EXPONENT_BIAS) << CLPT_MANTISSA_BITS);
+  return (u <= (real)0 || k < min_exponent) ? (real)0 : exp_z * scale;
+}
 
 /* Orthonormal basis around unit n (Duff et al., JCGT 2017): branch-free. Returns the tangent in
  * *t and the bitangent in *b, (t, b, n) right-handed. */

@@ -152,7 +152,12 @@ CLPT_INLINE Vec3 material_eval(__global const GpuMaterial* m, Vec3 d, Vec3 norma
   *pdf = kind == CLPT_MATERIAL_PHONG ? phong_pdf : *pdf;
 #endif
 #if CLPT_HAS_GLASS || CLPT_HAS_MIRROR
-  const bool specular = kind == CLPT_MATERIAL_GLASS || kind == CLPT_MATERIAL_MIRROR;
+  /* A bit test, not `kind == GLASS || kind == MIRROR`: LLVM turns two comparisons of one integer
+   * into a switch, which stops PoCL's vectoriser ("loop contains a switch statement"; the glass
+   * scene's nee kernels ran unvectorised, docs/performance.md "Presets"). OpenCL shifts count
+   * modulo 32, and kinds are below 32. */
+  const uint specular_kinds = (1u << CLPT_MATERIAL_GLASS) | (1u << CLPT_MATERIAL_MIRROR);
+  const bool specular = ((1u << kind) & specular_kinds) != 0u;
   f_cos = v3_select(specular, v3_splat((real)0), f_cos);
   *pdf = specular ? (real)0 : *pdf;
 #endif

@@ -65,7 +65,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--scenes", o->scenes, "Scene files (default: scenes/diffuse.toml)")->delimiter(',');
   cmd->add_option("--forms", o->forms, "megakernel,wavefront")
       ->delimiter(',')->check(CLI::IsMember({"megakernel", "wavefront"}));
-  cmd->add_option("--megakernel-loops", o->loops, "auto,path,lockstep (default: auto: lockstep on CPUs with fast or robust, else path)")
+  cmd->add_option("--megakernel-loops", o->loops, "auto,path,lockstep (default: auto: lockstep on CPUs, else path)")
       ->delimiter(',')->check(CLI::IsMember({"auto", "path", "lockstep"}));
   cmd->add_option("--kernels", o->kernels, "specialised,generic")
       ->delimiter(',')->check(CLI::IsMember({"specialised", "generic"}));

@@ -354,7 +354,7 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--form", o->form, "Execution form: auto (the device's default), megakernel or wavefront")
       ->check(CLI::IsMember({"auto", "megakernel", "wavefront"}));
   cmd->add_option("--megakernel-loop", o->megakernel_loop,
-                  "Megakernel: auto (lockstep on CPUs with --precision robust, else per path), path or lockstep")
+                  "Megakernel: auto (lockstep on CPUs, else per path), path or lockstep")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "path", "lockstep"}));
   cmd->add_option("--scene-loops", o->scene_loops,

@@ -64,16 +64,13 @@ std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name) {
   return std::nullopt;
 }
 
-// CPUs get the lockstep loop with the float presets: PoCL vectorises only loop-free code across
+// CPUs get the lockstep loop with every preset: PoCL vectorises only loop-free code across
 // work-items, so the per-path loop runs scalar (the lockstep one measured 4.9-6.4x faster with
-// robust on the three book scenes with either estimator, and 5x with fast, docs/performance.md).
-// The double preset is not vectorised in either loop (SLP pairs of doubles in the camera code
-// and the fp64 library's calls stop the work-item loop vectoriser), and there the per-path loop
-// measured faster. GPUs mask diverged lanes in hardware and need no barrier per segment; no GPU
-// has measured either loop yet.
-uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size) {
-  const bool lockstep = loop == MegakernelLoop::Lockstep ||
-                        (loop == MegakernelLoop::Auto && device.is_cpu && precision != Precision::Double);
+// robust on the three book scenes with either estimator, 5x with fast, and 2.3-3.3x with double
+// once its code was vectorised: docs/performance.md, "Presets"). GPUs mask diverged lanes in
+// hardware and need no barrier per segment; no GPU has measured either loop yet.
+uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, size_t local_size) {
+  const bool lockstep = loop == MegakernelLoop::Lockstep || (loop == MegakernelLoop::Auto && device.is_cpu);
   if (!lockstep) return 0;
   return static_cast<uint32_t>(local_size ? local_size : kDefaultLockstepGroup);
 }

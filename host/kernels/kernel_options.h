@@ -48,9 +48,9 @@ std::optional<MegakernelLoop> parse_megakernel_loop(const std::string& name);
 // The lockstep work-group size when not given (--local-size): 64 measured fastest on PoCL of
 // 32..256 (README "Speed"); small groups lose fewer lanes to paths that ended early.
 constexpr uint32_t kDefaultLockstepGroup = 64;
-// Work-group size of the lockstep loop for `loop` on this device with this preset (local_size:
-// the user's --local-size, 0 for none), or 0 for the per-path loop.
-uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, Precision precision, size_t local_size);
+// Work-group size of the lockstep loop for `loop` on this device (local_size: the user's
+// --local-size, 0 for none), or 0 for the per-path loop.
+uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, size_t local_size);
 
 // The scene-specialised sphere and light loops (CLPT_SPHERE_COUNT, CLPT_LIGHT_COUNT;
 // `--scene-loops`). Only a specialised kernel has them; the generic one loops over run-time counts.

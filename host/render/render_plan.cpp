@@ -107,7 +107,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     if (d.form == ExecutionForm::Megakernel) {
       d.entry_file = "megakernel.cl";
       d.features.lockstep_group =
-          lockstep_group_for(request.megakernel_loop, d.device, request.precision, request.local_size);
+          lockstep_group_for(request.megakernel_loop, d.device, request.local_size);
       d.local_size = d.features.lockstep_group ? d.features.lockstep_group : request.local_size;
     } else {
       d.entry_file = "wavefront.cl";
@@ -147,7 +147,7 @@ std::string explain_plan(const RenderPlan& plan) {
                 : std::string("per path"))
         << " (--megakernel-loop " << megakernel_loop_name(d.features.megakernel_loop)
         << (d.features.megakernel_loop == MegakernelLoop::Auto
-                ? std::string(": lockstep on CPUs with the float presets, per path otherwise; this is a ") +
+                ? std::string(": lockstep on CPUs, per path otherwise; this is a ") +
                       (d.device.is_cpu ? "CPU" : "GPU")
                 : std::string())
         << ")\n";
