@@ -34,12 +34,14 @@ usage() { sed -n '2,30p' "$0" >&2; exit 2; }
 bad() { echo "time_to_book_error.sh: $*" >&2; exit 2; }
 DEFAULT_SETS=(
   "--estimator book --sampler grid"
-  "--estimator book --sampler jitter"
   "--estimator book --sampler sobol"
+  "--estimator nee --sampler grid"
   "--estimator nee --sampler jitter"
   "--estimator nee --sampler sobol"
   "--estimator nee --sampler sobol --adaptive"
   "--estimator nee --sampler sobol --precision fast"
+  "--estimator nee --sampler sobol --rr-from 2"
+  "--estimator nee --sampler sobol --precision fast --rr-from 2"
 )
 
 [[ $# -ge 3 ]] || usage
