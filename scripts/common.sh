@@ -53,3 +53,19 @@ clpt_build() {
   cmake -S "$CLPT_ROOT" -B "$CLPT_BUILD" -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
   cmake --build "$CLPT_BUILD" -j "$(nproc)"
 }
+
+# clpt_wall_seconds DIR COMMAND...: prints the wall seconds of one whole-process run of COMMAND in
+# DIR, its output discarded. A failing run prints its command and exit status on stderr and
+# returns 1, so `t=$(clpt_wall_seconds ...)` stops a `set -e` script instead of timing a failure.
+clpt_wall_seconds() {
+  local dir=$1 start end status=0
+  shift
+  start=$(date +%s.%N)
+  (cd "$dir" && "$@" >/dev/null 2>&1) || status=$?
+  end=$(date +%s.%N)
+  [[ $status -eq 0 ]] || { clpt_log "failed (exit $status): $*"; return 1; }
+  awk -v a="$start" -v b="$end" 'BEGIN {printf "%.3f\n", b - a}'
+}
+
+# clpt_median: the median of the numbers on stdin, one a line.
+clpt_median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }

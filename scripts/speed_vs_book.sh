@@ -20,14 +20,7 @@ clpt="$CLPT_BUILD/clpt"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-wall() { # prints the wall seconds of one run of "$@" (run in $work, output discarded)
-  local start end
-  start=$(date +%s.%N)
-  (cd "$work" && "$@" >/dev/null 2>&1)
-  end=$(date +%s.%N)
-  awk -v a="$start" -v b="$end" 'BEGIN {printf "%.3f\n", b - a}'
-}
-median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+wall() { clpt_wall_seconds "$work" "$@"; }
 
 book_times=() clpt_times=()
 wall "$book" >/dev/null  # warm-up (page cache, PoCL kernel cache)
@@ -36,8 +29,8 @@ for ((i = 0; i < runs; ++i)); do
   book_times+=("$(wall "$book")")
   clpt_times+=("$(wall "$clpt" render "$CLPT_ROOT/scenes/diffuse.toml" --spp "$spp" -o "$work/c.exr" -q "$@")")
 done
-b=$(printf '%s\n' "${book_times[@]}" | median)
-c=$(printf '%s\n' "${clpt_times[@]}" | median)
+b=$(printf '%s\n' "${book_times[@]}" | clpt_median)
+c=$(printf '%s\n' "${clpt_times[@]}" | clpt_median)
 paths=$((640 * 480 * spp))
 printf 'machine: %s, %s cores; %s\n' "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" "$(nproc)" "$(date -u +%Y-%m-%d)"
 printf 'diffuse 640x480, %s spp, %s alternating runs each, median wall seconds (whole process)\n' "$spp" "$runs"
