@@ -28,16 +28,16 @@ bool interrupted(const PassLoopOptions& options) {
 
 // The next pass, or the stop, decided by the coordinator only: an interrupt (of any rank) first,
 // then the schedule (pass_schedule.h: the sample count, the time budget, the target error).
-PassDecision decide_next_pass(const Film& film, const PassTracer& tracer, const GpuRenderParams& params,
-                              const PassLoopOptions& options, PassMeasurements& measured,
-                              PassScheduleState& schedule) {
+PassDecision decide_next_pass(const Film& film, const ErrorEstimate& film_estimate, const PassTracer& tracer,
+                              const GpuRenderParams& params, const PassLoopOptions& options,
+                              PassMeasurements& measured, PassScheduleState& schedule) {
   PassDecision d;
   if (interrupted(options) || tracer.others_interrupted()) {
     d.interrupted = true;
     return d;
   }
   measured.max_samples_per_pass = tracer.max_samples_per_pass(params.pixel_count);
-  d.next = plan_next_pass(film, options.request, measured, schedule);
+  d.next = plan_next_pass(film, film_estimate, options.request, measured, schedule);
   return d;
 }
 
@@ -67,11 +67,15 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
   PassScheduleState schedule;
   AdaptiveSlotTable slot_table;
   std::vector<GpuSampleSlot> slots;  // the adaptive pass's
+  // The coordinator's error estimate of the film as it stands, made once after each pass: the
+  // progress line shows it and the next decision plans with it.
+  ErrorEstimate film_estimate;
+  if (decides) film_estimate = estimate_error(film);
   for (;;) {
     print_notices(tracer, progress);
     measured.elapsed_s = seconds_since(t0);
     PassDecision decision;
-    if (decides) decision = decide_next_pass(film, tracer, params, options, measured, schedule);
+    if (decides) decision = decide_next_pass(film, film_estimate, tracer, params, options, measured, schedule);
     tracer.share(decision);
     result.estimate = decision.next.estimate;
     if (decision.stop()) {
@@ -92,6 +96,7 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
     ++measured.passes;
     ++result.passes;
     if (!decides) continue;
+    film_estimate = estimate_error(film);
     ProgressState shown;
     shown.passes = result.passes;
     shown.spp_done = film.samples_per_pixel();
@@ -102,7 +107,7 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
     shown.spp_this_run = film.samples_per_pixel() - spp_before;
     if (options.request.target_error > 0) {
       shown.target_error = options.request.target_error;
-      shown.estimate = estimate_error(film);
+      shown.estimate = film_estimate;
       shown.predicted_spp = predicted_spp_for(shown.estimate, film.samples_per_pixel(), shown.target_error);
     }
     progress.update(shown);
@@ -111,7 +116,7 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
       last_checkpoint = Clock::now();
     }
   }
-  if (result.interrupted && decides) result.estimate = estimate_error(film);
+  if (result.interrupted && decides) result.estimate = film_estimate;
   print_notices(tracer, progress);
   progress.finish();
   return result;

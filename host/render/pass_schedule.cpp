@@ -82,11 +82,16 @@ uint64_t stop_spp(const PassRequest& request) {
 
 NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
                         PassScheduleState& state) {
+  return plan_next_pass(film, estimate_error(film), request, measured, state);
+}
+
+NextPass plan_next_pass(const Film& film, const ErrorEstimate& estimate, const PassRequest& request,
+                        const PassMeasurements& measured, PassScheduleState& state) {
   NextPass next;
   const uint64_t spp = film.samples_per_pixel();
   const uint64_t stop_spp = clpt::stop_spp(request);
   const uint32_t g = std::max<uint32_t>(request.granularity, 1);
-  next.estimate = estimate_error(film);
+  next.estimate = estimate;
   next.half = film.next_half();
   const uint64_t half_spp[2] = {film.half_samples_per_pixel(0), film.half_samples_per_pixel(1)};
   next.sample_begin = static_cast<uint32_t>((uint64_t(next.half) << CLPT_SAMPLE_STREAM_BIT) + half_spp[next.half]);

@@ -80,7 +80,10 @@ struct NextPass {
 uint64_t stop_spp(const PassRequest& request);
 
 // Deterministic: the same film, request, measurements and state give the same answer. Updates
-// `state` at check points.
+// `state` at check points. `estimate` must be estimate_error(film): a caller that has it already
+// (the pass loop, which shows it on the progress line) passes it in; the short form computes it.
+NextPass plan_next_pass(const Film& film, const ErrorEstimate& estimate, const PassRequest& request,
+                        const PassMeasurements& measured, PassScheduleState& state);
 NextPass plan_next_pass(const Film& film, const PassRequest& request, const PassMeasurements& measured,
                         PassScheduleState& state);
 
