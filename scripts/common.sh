@@ -69,3 +69,8 @@ clpt_wall_seconds() {
 
 # clpt_median: the median of the numbers on stdin, one a line.
 clpt_median() { sort -g | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
+
+# clpt_machine_line: "machine: CPU MODEL, N cores; YYYY-MM-DD" for a timing script's report.
+clpt_machine_line() {
+  printf 'machine: %s, %s cores; %s\n' "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" "$(nproc)" "$(date -u +%Y-%m-%d)"
+}

@@ -32,7 +32,7 @@ done
 b=$(printf '%s\n' "${book_times[@]}" | clpt_median)
 c=$(printf '%s\n' "${clpt_times[@]}" | clpt_median)
 paths=$((640 * 480 * spp))
-printf 'machine: %s, %s cores; %s\n' "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" "$(nproc)" "$(date -u +%Y-%m-%d)"
+clpt_machine_line
 printf 'diffuse 640x480, %s spp, %s alternating runs each, median wall seconds (whole process)\n' "$spp" "$runs"
 calc() { awk "BEGIN {printf \"%.2f\", $1}"; }
 printf '  book renderer: %s s (%s M paths/s)   runs: %s\n' "$b" "$(calc "$paths / $b / 1e6")" "${book_times[*]}"

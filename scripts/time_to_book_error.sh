@@ -131,7 +131,7 @@ for ((r = 0; r < runs; ++r)); do
 done
 b=$(printf '%s\n' "${book_times[@]}" | clpt_median)
 
-printf 'machine: %s, %s cores; %s\n' "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)" "$(nproc)" "$(date -u +%Y-%m-%d)"
+clpt_machine_line
 printf 'book renderer, diffuse 640x480, 256 spp: RMSE %s against the reference (%s before taking out the reference noise %s)\n' \
   "$target" "$book_raw" "$(calc "sqrt($ref_noise)")"
 printf '  %s runs, median %s s   runs: %s\n' "$runs" "$b" "${book_times[*]}"
