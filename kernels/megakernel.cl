@@ -49,7 +49,7 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
 #if CLPT_HAS_BVH
     /* A traversal loop runs scalar (it is data dependent); barriers keep each in a region of its
      * own (the closest hit, then nee's shadow ray), so the sphere loop and the shading between
-     * them still run 8 paths per instruction. path_shade's halves, as path.cl composes them. */
+     * them still run vectorised across paths. path_shade's halves, as path.cl composes them. */
     Hit hit = path_intersect_loop(&path, &scene, &params);
     hit.t = path.alive ? hit.t : (real)0; /* an ended path's traversal stops at the root's box */
     barrier(CLK_LOCAL_MEM_FENCE);
