@@ -26,6 +26,7 @@ struct Variant {
   bool meshes = false;  // the mesh scene (with_meshes) instead of the book scene
   bool adaptive = false;
   uint64_t spp = 32;
+  CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;
 };
 
 // The book scene with triangles and a hierarchy: its left ball replaced by a tessellated sphere
@@ -62,6 +63,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     if (v.meshes) with_meshes(request.scene);
     request.adaptive = v.adaptive;
     request.scene.settings.spp = int(v.spp);
+    request.cpu_vector_bits = v.cpu_vector_bits;
   });
 }
 
@@ -111,6 +113,25 @@ TEST_P(FormsAgree, RolledSceneLoopsEqualUnrolled) {
       Variant unrolled = rolled;
       unrolled.scene_loops = SceneLoops::Unrolled;
       expect_same_image(render_variant(GetParam(), rolled), render_variant(GetParam(), unrolled));
+    }
+  }
+}
+
+// 512-bit kernels (kernels/cpu_tuning.h) run each path's arithmetic as the 256-bit ones do, 16
+// lanes at a time instead of 8: the same image in both forms, for both estimators. Only where the
+// test device takes them (PoCL on an x86 CPU with AVX-512); elsewhere the option is refused, which
+// KernelOptions.CpuVectorBits512IsRefusedWhereTheDeviceCannotTakeIt checks.
+TEST_P(FormsAgree, WideCpuVectorsEqualDefault) {
+  if (!device_takes_512_bit_vectors(test_device().device()))
+    GTEST_SKIP() << "the test device is not PoCL on an x86 CPU with AVX-512";
+  for (const char* estimator : {"book", "nee"}) {
+    SCOPED_TRACE(estimator);
+    for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+      Variant wide{form, 0, false, 0, MegakernelLoop::Auto, estimator};
+      wide.cpu_vector_bits = CpuVectorBits::Bits512;
+      Variant narrow = wide;
+      narrow.cpu_vector_bits = CpuVectorBits::Bits256;
+      expect_same_image(render_variant(GetParam(), wide), render_variant(GetParam(), narrow));
     }
   }
 }

@@ -1,12 +1,13 @@
 // The covering set of kernel variants (host/tools/kernel_variants.h): every value and every pair
 // of values is in some variant, the set is the same on every run, and each variant builds what a
-// render of its scene would.
+// render of its scene would; and the per-device choice of the CPU vector width.
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "render_test_util.h"
 #include "tools/kernel_variants.h"
+#include "util/error.h"
 
 namespace clpt::test {
 namespace {
@@ -58,6 +59,51 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
     const bool rolled = !v.generic() && v.scene_loops() == SceneLoops::Rolled;
     EXPECT_EQ(kernel_build_options(p.features).find("-DCLPT_UNROLL_SCENE_LOOPS=0") != std::string::npos, rolled)
         << v.name();
+  }
+}
+
+// --cpu-vector-bits: auto and 256 leave the compiler's width; 512 tunes the kernels for a CPU
+// without a 256-bit preference (kernels/cpu_tuning.h), and only for PoCL on an x86 CPU with AVX-512.
+TEST(KernelOptions, CpuVectorBits512IsRefusedWhereTheDeviceCannotTakeIt) {
+  DeviceInfo gpu;
+  gpu.name = "some GPU";
+  gpu.platform_name = "NVIDIA CUDA";
+  gpu.is_gpu = true;
+  DeviceInfo simulator = gpu;
+  simulator.platform_name = "Oclgrind";
+  simulator.is_gpu = false;
+  simulator.is_cpu = true;
+  simulator.device_version = "OpenCL 1.2 Oclgrind";
+  for (const DeviceInfo& d : {gpu, simulator}) {
+    SCOPED_TRACE(d.platform_name);
+    EXPECT_FALSE(device_takes_512_bit_vectors(d));
+    EXPECT_EQ(tune_cpu_for(CpuVectorBits::Auto, d), "");
+    EXPECT_EQ(tune_cpu_for(CpuVectorBits::Bits256, d), "");
+    try {
+      tune_cpu_for(CpuVectorBits::Bits512, d);
+      ADD_FAILURE() << "512 bits accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::Usage);
+      EXPECT_NE(std::string(e.what()).find("--cpu-vector-bits 512"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(KernelOptions, CpuVectorBits512TunesPoclKernelsOnAvx512) {
+  DeviceInfo pocl;
+  pocl.name = "pthread-skylake-avx512";
+  pocl.platform_name = "Portable Computing Language";
+  pocl.is_cpu = true;
+  pocl.device_version = "OpenCL 3.0 PoCL HSTR: pthread-x86_64-pc-linux-gnu-skylake-avx512";
+  for (const char* vendor : {"AuthenticAMD", "GenuineIntel"}) {
+    pocl.vendor = vendor;
+    KernelFeatures f = features_for_scene(load_book_scene("diffuse"));
+    EXPECT_EQ(kernel_build_options(f).find("CLPT_TUNE_CPU"), std::string::npos);
+    if (!device_takes_512_bit_vectors(pocl)) GTEST_SKIP() << "this host's CPU has no AVX-512";
+    f.tune_cpu = tune_cpu_for(CpuVectorBits::Bits512, pocl);
+    EXPECT_EQ(f.tune_cpu, std::string(vendor) == "AuthenticAMD" ? "znver3" : "x86-64");
+    EXPECT_NE(kernel_build_options(f).find(" -DCLPT_TUNE_CPU=" + f.tune_cpu), std::string::npos);
+    EXPECT_NE(explain_kernel_options(f).find("CPU vector width: 512 bits"), std::string::npos);
   }
 }
 

@@ -41,5 +41,22 @@ for scene in diffuse specular glass "$work/hierarchy"; do
     done
   done
 done
+# --cpu-vector-bits 512 (kernels/cpu_tuning.h) must reach the vectoriser: 16 work-items per
+# instruction in some loop of the float presets' kernels, both forms. Only on an AVX-512 CPU
+# (elsewhere clpt refuses the option: test_kernel_variants).
+if grep -qw avx512f /proc/cpuinfo; then
+  for form in megakernel wavefront; do
+    for precision in robust fast; do
+      name=wide.$form.$precision
+      POCL_VECTORIZER_REMARKS=1 POCL_CACHE_DIR=$work/pocl-$name CLPT_CACHE_DIR=$work/clpt-cache \
+        "$clpt" render scenes/diffuse.toml --cpu-vector-bits 512 --form "$form" --precision "$precision" --no-cache \
+        --width 16 --height 8 --spp 1 --sampler jitter -q -o "$work/$name.pfm" > "$work/$name.log" 2>&1 ||
+        { echo "FAIL: $name did not render"; cat "$work/$name.log"; failed=1; continue; }
+      sed 's/<unknown>:0:0: /\n/g' "$work/$name.log" > "$work/$name.remarks"
+      grep -q "vectorized loop (vectorization width: 16," "$work/$name.remarks" ||
+        { echo "FAIL: $name: no work-item loop 16 wide with --cpu-vector-bits 512 (see $work/$name.remarks)"; failed=1; }
+    done
+  done
+fi
 test "$failed" -eq 0
 echo "vectorised: every book scene and a hierarchy scene x estimator x preset compile to vectorised work-item loops on PoCL"

@@ -21,6 +21,7 @@ struct BenchOptions {
   std::vector<std::string> precisions = {"robust"};
   std::vector<std::string> bvh_builders = {"clpt"};
   std::string sampler = "jitter";
+  std::string cpu_vector_bits = "auto";
   std::string json, baseline;
   double tolerance = 10;
 };
@@ -37,6 +38,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   for (const std::string& k : o.kernels) config.generic.push_back(k == "generic");
   config.scenes = o.scenes;
   config.sampler = sampler_from_name(o.sampler).value();  // CLI11 checked the name
+  config.cpu_vector_bits = *parse_cpu_vector_bits(o.cpu_vector_bits);
   config.precisions.clear();
   for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
   config.bvh_builders.clear();
@@ -83,6 +85,11 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--warmup", config->warmup, "Untimed runs first")->check(CLI::Range(0, 100));
   cmd->add_option("--repeat", config->repeat, "Timed runs")->check(CLI::Range(1, 1000));
   cmd->add_option("--paths-in-flight", config->paths_in_flight, "Wavefront path slots (0: the device's default)");
+  cmd->add_option("--cpu-vector-bits", o->cpu_vector_bits,
+                  "As for render: auto, 256 or 512 (PoCL x86 CPUs with AVX-512), for every row; the rows built "
+                  "512 bits wide say so")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "256", "512"}));
   cmd->add_option("--sampler", o->sampler,
                   "Sampler of every run (default jitter; the rows do not name it, so compare a --baseline "
                   "taken with the same one)")

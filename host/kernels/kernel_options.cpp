@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "scene/device_scene.h"
+#include "util/error.h"
 
 namespace clpt {
 
@@ -73,6 +74,43 @@ uint32_t lockstep_group_for(MegakernelLoop loop, const DeviceInfo& device, size_
   const bool lockstep = loop == MegakernelLoop::Lockstep || (loop == MegakernelLoop::Auto && device.is_cpu);
   if (!lockstep) return 0;
   return static_cast<uint32_t>(local_size ? local_size : kDefaultLockstepGroup);
+}
+
+const char* cpu_vector_bits_name(CpuVectorBits bits) {
+  switch (bits) {
+    case CpuVectorBits::Bits256: return "256";
+    case CpuVectorBits::Bits512: return "512";
+    default: return "auto";
+  }
+}
+
+std::optional<CpuVectorBits> parse_cpu_vector_bits(const std::string& name) {
+  if (name == "auto") return CpuVectorBits::Auto;
+  if (name == "256") return CpuVectorBits::Bits256;
+  if (name == "512") return CpuVectorBits::Bits512;
+  return std::nullopt;
+}
+
+bool device_takes_512_bit_vectors(const DeviceInfo& device) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  // PoCL's CPU device compiles for the host's CPU, so the host's CPUID is the device's.
+  const bool host_has_avx512 = __builtin_cpu_supports("avx512f");
+#else
+  const bool host_has_avx512 = false;
+#endif
+  // PoCL's device version names its LLVM target: "... HSTR: pthread-x86_64-pc-linux-gnu-<cpu>".
+  return device.is_cpu && device.platform_name == "Portable Computing Language" &&
+         device.device_version.find("x86_64") != std::string::npos && host_has_avx512;
+}
+
+std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device) {
+  if (bits != CpuVectorBits::Bits512) return "";
+  if (!device_takes_512_bit_vectors(device))
+    throw Error(ExitCode::Usage, "--cpu-vector-bits 512: " + device.label() +
+                                      " is not PoCL's CPU device on an x86-64 CPU with AVX-512 (use 256 or auto)");
+  // Tunings without LLVM 15's 256-bit preference; the AMD one is what was measured (znver4 is
+  // newer than LLVM 15).
+  return device.vendor.find("AMD") != std::string::npos ? "znver3" : "x86-64";
 }
 
 const char* scene_loops_name(SceneLoops loops) {
@@ -186,6 +224,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
+  if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -261,6 +300,12 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     o << "  scene loops: " << (features.unroll_scene_loops ? "unrolled" : "rolled") << " (--scene-loops "
       << scene_loops_name(features.scene_loops)
       << (features.scene_loops == SceneLoops::Auto ? ": unrolled on CPUs, rolled on GPUs" : "") << ")\n";
+  o << "  CPU vector width: "
+    << (features.tune_cpu.empty()
+            ? std::string("the compiler's default (--cpu-vector-bits ") + cpu_vector_bits_name(features.cpu_vector_bits) +
+                  (features.cpu_vector_bits == CpuVectorBits::Auto ? ": 256 bits on an AVX-512 CPU" : "") + ")"
+            : "512 bits (--cpu-vector-bits 512: tuned as " + features.tune_cpu + ", kernels/cpu_tuning.h)")
+    << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

@@ -66,6 +66,25 @@ std::optional<SceneLoops> parse_scene_loops(const std::string& name);
 // Whether a kernel for this device unrolls its scene loops.
 bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device);
 
+// How wide PoCL vectorises the kernels on an x86 CPU with AVX-512 (`--cpu-vector-bits`;
+// kernels/cpu_tuning.h says how 512 is reached).
+//   auto: 256, LLVM's own choice (measured on AMD EPYC Zen 4, 2026-12-02: 512 bits bought 1.00-1.06x
+//         with the float presets, within the runs' spread, and 0.28x double with nee, where LLVM's
+//         SLP vectoriser pairs values and stops the work-item loop; docs/performance.md "Width")
+//   256:  8 float / 4 double lanes
+//   512:  16 float / 8 double lanes; only on PoCL x86 CPU devices with AVX-512, else a usage error
+enum class CpuVectorBits { Auto, Bits256, Bits512 };
+const char* cpu_vector_bits_name(CpuVectorBits bits);
+// "auto" | "256" | "512"; nullopt otherwise.
+std::optional<CpuVectorBits> parse_cpu_vector_bits(const std::string& name);
+// Whether this device can be given 512-bit vectors: PoCL's CPU device on an x86-64 host whose
+// CPU has AVX-512 (PoCL's CPU device is the host's CPU).
+bool device_takes_512_bit_vectors(const DeviceInfo& device);
+// The LLVM CPU whose tuning the kernels take for this device (CLPT_TUNE_CPU), or "" for the
+// compiler's default: "znver3" on AMD, "x86-64" on other vendors, when `bits` is 512. Throws
+// Error(Usage) naming --cpu-vector-bits when 512 is asked of a device that does not take it.
+std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device);
+
 // Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
 // of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
 // The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
@@ -101,6 +120,8 @@ struct KernelFeatures {
   uint32_t lockstep_group = 0;  // CLPT_LOCKSTEP_GROUP when > 0 (megakernel.cl); 0: per-path loop
   SceneLoops scene_loops = SceneLoops::Auto;  // the request; resolved per device into:
   bool unroll_scene_loops = true;  // false: CLPT_UNROLL_SCENE_LOOPS=0 (a specialised kernel only)
+  CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;  // the request; resolved per device into:
+  std::string tune_cpu;  // CLPT_TUNE_CPU when not empty (kernels/cpu_tuning.h): 512-bit vectors
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

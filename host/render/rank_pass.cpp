@@ -23,12 +23,14 @@ std::string join(const std::vector<std::string>& parts, const char* separator) {
 }
 
 // The build options a kernel of this plan would have on any device: the per-device choices
-// (megakernel loop, scene loops) set to one value.
+// (megakernel loop, scene loops, CPU vector width) set to one value.
 std::string device_independent_options(KernelFeatures features) {
   features.megakernel_loop = MegakernelLoop::Auto;
   features.lockstep_group = 0;
   features.scene_loops = SceneLoops::Auto;
   features.unroll_scene_loops = true;
+  features.cpu_vector_bits = CpuVectorBits::Auto;
+  features.tune_cpu.clear();
   features.build_nonce = 0;
   return kernel_build_options(features);
 }

@@ -95,6 +95,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   features.intersection = request.intersection;
   features.megakernel_loop = request.megakernel_loop;
   features.scene_loops = request.scene_loops;
+  features.cpu_vector_bits = request.cpu_vector_bits;
 
   for (size_t i = 0; i < devices.size(); ++i) {
     DevicePlan d;
@@ -104,6 +105,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     d.form_reason = request.form ? "--form" : "the device's default";
     d.features = features;
     d.features.unroll_scene_loops = scene_loops_unrolled_for(request.scene_loops, d.device);
+    d.features.tune_cpu = tune_cpu_for(request.cpu_vector_bits, d.device);
     if (d.form == ExecutionForm::Megakernel) {
       d.entry_file = "megakernel.cl";
       d.features.lockstep_group =

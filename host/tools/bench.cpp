@@ -55,6 +55,7 @@ RenderRequest cell_request(const Scene& scene, const BenchConfig& c, ExecutionFo
   request.precision = precision;
   request.generic_kernel = generic;
   request.local_size = local_size;
+  request.cpu_vector_bits = c.cpu_vector_bits;
   request.paths_in_flight = c.paths_in_flight;
   request.use_kernel_cache = false;
   return request;
@@ -95,6 +96,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   DevicePool pool(plan, ds, FaultPlan());
   row.build_cached_s = pool.shares().front().build_seconds;
   row.local_size = planned.local_size;
+  row.cpu_vector_bits = planned.features.tune_cpu.empty() ? "default" : "512";
   if (form == ExecutionForm::Megakernel) row.loop = planned.features.lockstep_group ? "lockstep" : "path";
   row.paths_in_flight = planned.paths_in_flight;
 
@@ -199,7 +201,8 @@ std::string format_rate(const Spread& s) {
 
 std::string BenchRow::key() const {
   return scene + "|" + form + (loop.empty() ? "" : ":" + loop) + "|" + kernel + "|" + precision + "|" +
-         estimator + "|" + device + "|" + std::to_string(local_size) + (bvh_builder == "clpt" ? "" : "|bvh=" + bvh_builder);
+         estimator + "|" + device + "|" + std::to_string(local_size) + (bvh_builder == "clpt" ? "" : "|bvh=" + bvh_builder) +
+         (cpu_vector_bits == "default" ? "" : "|bits=" + cpu_vector_bits);
 }
 
 std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
@@ -259,7 +262,7 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
                   r.precision.c_str(), r.estimator.c_str(),
                   r.local_size ? std::to_string(r.local_size).c_str() : "auto",
                   format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), per_cpu, build,
-                  r.device.c_str());
+                  (r.device + (r.cpu_vector_bits == "512" ? " (512-bit vectors)" : "")).c_str());
     o << line;
     if (!r.stage_seconds.empty()) {
       o << "    stages (median s/run):";
@@ -301,7 +304,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
     };
     nlohmann::json row = {{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
                           {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
-                          {"device", r.device}, {"local_size", r.local_size},
+                          {"device", r.device}, {"local_size", r.local_size}, {"cpu_vector_bits", r.cpu_vector_bits},
                           {"paths_in_flight", r.paths_in_flight},
                           {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},

@@ -32,6 +32,8 @@ struct BenchConfig {
   int warmup = 1, repeat = 5;
   uint32_t paths_in_flight = 0;                // wavefront; 0: the device's default
   Sampler sampler = Sampler::Jitter;           // one for the whole matrix (rows do not name it)
+  // One for the whole matrix (--cpu-vector-bits); rows record the width they were built for.
+  CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;
   // Who builds the hierarchy of each row's device scene (a plain bench only: the MPI scaling
   // renders as `clpt render` does, with clpt's own builder).
   std::vector<BvhBuilder> bvh_builders = {BvhBuilder::Clpt};
@@ -60,6 +62,8 @@ struct BenchRow {
   std::string scene, form, kernel, precision, estimator, device;
   std::string loop;       // the megakernel's loop as run ("lockstep", "path"); "" for the wavefront
   size_t local_size = 0;  // the work-group size as run; 0: the driver's choice
+  // The kernels' CPU vector width as built: "512" (CLPT_TUNE_CPU), else "default".
+  std::string cpu_vector_bits = "default";
   uint32_t paths_in_flight = 0;
   double build_cold_s = 0, build_cached_s = 0;
   // The bounding volume hierarchy (none: nodes 0): what it holds, its host build time and the
@@ -75,7 +79,9 @@ struct BenchRow {
   Spread paths_per_cpu_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
   std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty
-  std::string key() const;  // identifies the row across runs (for --baseline); names a builder other than clpt
+  // Identifies the row across runs (for --baseline); names a builder other than clpt and a
+  // vector width other than the default.
+  std::string key() const;
 };
 
 // In an MPI job the rows are rank 0's (the other ranks' rows hold no figures); collective.
