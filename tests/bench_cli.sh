@@ -4,7 +4,9 @@
 # against its own results as baseline, and fails (exit 1, REGRESSION) against a baseline that
 # claims 1000 times the speed. --bvh-builders: an unknown builder is refused (exit 2, naming the
 # option); the Cornell box's rows report their hierarchy and builder, one row per builder (clpt's,
-# and Embree's two in a build with Embree), each with its own key.
+# and Embree's two in a build with Embree), each with its own key. Each row reports its vector
+# width (vector_width): on PoCL's CPU device a positive number of work-items, elsewhere null and
+# why; --no-vector-width: null, "not measured".
 #   bench_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -euo pipefail
 clpt=$1 src=$2 work=$3
@@ -12,15 +14,19 @@ rm -rf "$work" && mkdir -p "$work" && cd "$src"
 common=(--width 32 --height 24 --spp 2 --warmup 0 --repeat 2 --devices cpu --forms megakernel,wavefront
         --megakernel-loops lockstep,path)
 
+# The platform of the first CPU device, which --devices cpu benchmarks: PoCL reports vector widths.
+cpu_platform=$("$clpt" devices | awk '/^platform: /{sub(/^platform: /, ""); p=$0} /^ *\[[0-9]+\] CPU /{print p; exit}')
 "$clpt" bench "${common[@]}" --json "$work/bench.json" > "$work/table.txt"
 grep -q "megakernel" "$work/table.txt" && grep -q "wavefront" "$work/table.txt"
-python3 - "$work/bench.json" <<'PY'
+grep -q " lanes " "$work/table.txt"
+python3 - "$work/bench.json" "$cpu_platform" <<'PY'
 import json, sys
 doc = json.load(open(sys.argv[1]))
+pocl = sys.argv[2] == "Portable Computing Language"
 rows = doc["rows"]
 assert len(rows) == 3, rows  # megakernel (lockstep, per path) and the wavefront once
 fields = {"key", "scene", "form", "loop", "kernel", "precision", "estimator", "device", "local_size", "paths_in_flight", "build_cold_s",
-          "build_cached_s", "paths_per_s", "segments_per_s", "paths_per_cpu_s", "stage_seconds"}
+          "build_cached_s", "paths_per_s", "segments_per_s", "paths_per_cpu_s", "stage_seconds", "vector_width"}
 for r in rows:
     missing = fields - r.keys()
     assert not missing, missing
@@ -32,15 +38,33 @@ lockstep = [r for r in rows if r["loop"] == "lockstep"][0]
 assert lockstep["local_size"] == 64, lockstep  # the lockstep loop's default work-group
 wf = [r for r in rows if r["form"] == "wavefront"][0]
 assert {"generate", "intersect", "shade", "film"} <= wf["stage_seconds"].keys(), wf
+for r in rows:
+    v = r["vector_width"]
+    if pocl:  # measured: the widest loop's work-items, and the loops it counted
+        assert isinstance(v["widest"], int) and v["widest"] >= 1, v
+        assert v["not_vectorised"] >= 0 and all(int(w) >= 2 and n >= 1 for w, n in v["loops"].items()), v
+        assert v["widest"] == max([1] + [int(w) for w in v["loops"]]), v
+    else:
+        assert v["widest"] is None and v["why"] == "the driver does not report it", v
+if pocl:  # PoCL vectorises the lockstep loop across work-items (docs/performance.md)
+    assert lockstep["vector_width"]["widest"] > 1, lockstep
 # A baseline 1000 times faster than measured: every row must be a regression, however noisy
 # the machine (a timing ratio of 1000 cannot come from load).
 for r in rows:
     r["paths_per_s"]["median"] *= 1000
 json.dump(doc, open(sys.argv[1].replace("bench.json", "faster.json"), "w"))
 PY
-# A 100% tolerance accepts any speed; the 1000x baseline at 10% must fail.
-"$clpt" bench "${common[@]}" --baseline "$work/bench.json" --tolerance 100 > "$work/same.txt"
-if "$clpt" bench "${common[@]}" --baseline "$work/faster.json" --tolerance 10 > "$work/slower.txt"; then
+# A 100% tolerance accepts any speed; the 1000x baseline at 10% must fail. These runs measure no
+# vector width: their rows say so.
+"$clpt" bench "${common[@]}" --no-vector-width --baseline "$work/bench.json" --tolerance 100 \
+    --json "$work/same.json" > "$work/same.txt"
+python3 - "$work/same.json" <<'PY'
+import json, sys
+for r in json.load(open(sys.argv[1]))["rows"]:
+    assert r["vector_width"] == {"widest": None, "why": "not measured (--no-vector-width)"}, r
+PY
+if grep -q "vector width:" "$work/same.txt"; then echo "FAIL: --no-vector-width measured a vector width"; exit 1; fi
+if "$clpt" bench "${common[@]}" --no-vector-width --baseline "$work/faster.json" --tolerance 10 > "$work/slower.txt"; then
   echo "FAIL: a baseline 1000x faster did not fail"; exit 1
 fi
 test "$(grep -c REGRESSION "$work/slower.txt")" -eq 3
@@ -50,13 +74,13 @@ status=0
 test "$status" -eq 2 || { echo "FAIL: --bvh-builders nosuch exited $status, not 2"; exit 1; }
 grep -q -- "--bvh-builders: unknown hierarchy builder 'nosuch'" "$work/builder.err" || { cat "$work/builder.err"; exit 1; }
 builders=clpt
-if "$clpt" bench --bvh-builders embree --scenes scenes/diffuse.toml --width 4 --height 4 --spp 1 --warmup 0 \
+if "$clpt" bench --no-vector-width --bvh-builders embree --scenes scenes/diffuse.toml --width 4 --height 4 --spp 1 --warmup 0 \
        --repeat 1 --devices cpu --forms megakernel > /dev/null 2> "$work/embree.err"; then
   builders=clpt,embree,embree-1thread
 else
   grep -q "built without Embree" "$work/embree.err" || { cat "$work/embree.err"; exit 1; }
 fi
-"$clpt" bench --scenes scenes/cornell-box.toml --bvh-builders "$builders" --width 16 --height 16 --spp 1 --warmup 0 \
+"$clpt" bench --no-vector-width --scenes scenes/cornell-box.toml --bvh-builders "$builders" --width 16 --height 16 --spp 1 --warmup 0 \
     --repeat 1 --devices cpu --forms megakernel --json "$work/mesh.json" > "$work/mesh.txt"
 python3 - "$work/mesh.json" "$builders" <<'PY'
 import json, sys
@@ -69,4 +93,4 @@ for r in rows:
     assert r["device_bytes_per_triangle"] > 0 and r["bvh_build_s"] >= 0, r
 PY
 test "$(grep -c "hierarchy: 32 triangles" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$builders" | wc -l)"
-echo "bench CLI: table, JSON fields, baseline pass and regression, hierarchy builders all as expected"
+echo "bench CLI: table, JSON fields, vector widths, baseline pass and regression, hierarchy builders all as expected"

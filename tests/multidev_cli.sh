@@ -9,7 +9,8 @@
 #  * every device failing: exit 4, both errors printed, no output file;
 #  * --device 0,0 / 7 / all, : usage errors (exit 2) naming --device and the entry;
 #  * --explain prints the render plan once per selected device, after selection, with each
-#    device's own form and loop (device 1 asked for the wavefront's path pool by --form).
+#    device's own form and loop (device 1 asked for the wavefront's path pool by --form), and
+#    each device's vector width measured from PoCL's vectoriser remarks (both devices are PoCL's).
 #   multidev_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -41,10 +42,15 @@ expect_exit $? 0 "render --explain on two devices" explain.exr
 [[ $(count "^device [01]: device '" explain.exr.out) -eq 2 ]] || { fail "not one plan block per device"; cat explain.exr.out; }
 [[ $(count "megakernel loop: lockstep, work-groups of 64" explain.exr.out) -eq 2 ]] ||
   { fail "the CPU devices' resolved lockstep loop is not printed"; cat explain.exr.out; }
+# PoCL vectorises the lockstep loop across work-items: a measured width of 2 or more per device.
+[[ $(count "^    vector width: [2-9][0-9]* work-items (vectorised loops: " explain.exr.out) -eq 2 ]] ||
+  { fail "not one measured vector width per device"; cat explain.exr.out explain.exr.err; }
 render explain_wf.exr 1 --device 1 --form wavefront --paths-in-flight 4096 --explain
 expect_exit $? 0 "render --explain --form wavefront" explain_wf.exr
 grep -q "execution form: wavefront (--form)" explain_wf.exr.out && grep -q "path pool: 4096 paths in flight" explain_wf.exr.out ||
   { fail "the wavefront plan is not printed"; cat explain_wf.exr.out; }
+grep -q "^    vector width: [1-9][0-9]* work-item" explain_wf.exr.out ||
+  { fail "the wavefront plan has no measured vector width"; cat explain_wf.exr.out explain_wf.exr.err; }
 
 # A launch failing mid-render: the work goes to the other device. Launches of about 1 ms, so that
 # each device has many (the whole render takes a few tens of ms on PoCL).

@@ -24,6 +24,7 @@ struct BenchOptions {
   std::string cpu_vector_bits = "auto";
   std::string json, baseline;
   double tolerance = 10;
+  bool no_vector_width = false;
 };
 
 int run(BenchConfig config, const BenchOptions& o) {
@@ -46,6 +47,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   if (ranks.size() > 1 && (config.bvh_builders.size() > 1 || config.bvh_builders.front() != BvhBuilder::Clpt))
     throw Error(ExitCode::Usage, "--bvh-builders: only clpt in an MPI job (its scaling renders as clpt render does)");
   if (config.devices.empty()) config.devices = {"best"};
+  config.measure_vector_width = !o.no_vector_width;
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
   std::printf("%s", bench_table(rows).c_str());
@@ -98,6 +100,9 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "Hierarchy builders: clpt (the default, what renders use), embree, embree-1thread (only in a "
                   "build with Embree; docs/performance.md \"Traversal\")")
       ->delimiter(',');
+  cmd->add_flag("--no-vector-width", o->no_vector_width,
+                "Do not measure each row's vector width (one extra small cold compile per row; the lanes "
+                "column and the JSON's vector_width then say not measured)");
   cmd->add_option("--json", o->json, "Also write the results as JSON");
   cmd->add_option("--baseline", o->baseline, "Compare with a saved --json file; exit 1 on a regression");
   cmd->add_option("--tolerance", o->tolerance, "Allowed drop of median paths/s against --baseline, percent")

@@ -16,6 +16,7 @@
 #include "render/render_session.h"
 #include "scene/precision_range.h"
 #include "scene/scene_loader.h"
+#include "tools/vector_width.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #ifdef CLPT_WITH_OIIO
@@ -281,7 +282,15 @@ int run(const RenderOptions& o) {
   request.ranks = &ranks;
   request.launch_target_s = o.launch_ms / 1000;
   // After device selection, before any device work: the plan as every device will run it.
-  if (o.explain) request.on_plan = [](const RenderPlan& plan) { std::printf("%s", explain_plan(plan).c_str()); };
+  // --explain also measures each device's vector width (a child render per device,
+  // tools/vector_width.h); the request is the one rendered, as it stands when the plan is made.
+  if (o.explain)
+    request.on_plan = [&request](const RenderPlan& plan) {
+      std::vector<std::string> widths;
+      for (const DevicePlan& d : plan.devices)
+        widths.push_back(probe_vector_width(request, d, this_executable()).describe());
+      std::printf("%s", explain_plan(plan, widths).c_str());
+    };
   RenderReport report;
   request.scene = scene;
   // The loader's findings (e.g. degenerate triangles dropped), then scenes beyond what the

@@ -125,7 +125,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   return plan;
 }
 
-std::string explain_plan(const RenderPlan& plan) {
+std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>& vector_widths) {
   std::ostringstream o;
   o << "render plan: " << plan.width << "x" << plan.height << ", "
     << (plan.target_spp ? std::to_string(plan.target_spp) + " spp" : std::string("no sample limit"))
@@ -170,6 +170,7 @@ std::string explain_plan(const RenderPlan& plan) {
       << "', " << format_bytes(d.memory.largest_bytes) << ")\n";
     std::istringstream kernel(explain_kernel_options(d.features));
     for (std::string line; std::getline(kernel, line);) o << "  " << line << "\n";
+    if (d.position < vector_widths.size()) o << "    vector width: " << vector_widths[d.position] << "\n";
   }
   return o.str();
 }

@@ -54,8 +54,10 @@ struct RenderPlan {
 // device is touched; checks that need the device (fp64, memory) happen when the pool builds.
 RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInfo>& devices);
 
-// Every decision of the plan, a few lines per device, for --explain.
-std::string explain_plan(const RenderPlan& plan);
+// Every decision of the plan, a few lines per device, for --explain. `vector_widths`, when not
+// empty, holds one measured description per device of the plan (tools/vector_width.h, measured by
+// the caller: this stays pure), printed in that device's kernel specialisation block.
+std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>& vector_widths = {});
 
 // The execution form used when none is asked for on this device (docs/design.md, "Execution forms").
 ExecutionForm default_form_for(const DeviceInfo& device);

@@ -126,6 +126,8 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.segments_per_s = spread_of(segments_per_s);
   row.paths_per_cpu_s = spread_of(paths_per_cpu_s);
   for (const auto& [label, v] : stage_runs) row.stage_seconds.emplace_back(label, spread_of(v).median);
+  // After the timed runs, so that the probe's compile in another process overlaps none of them.
+  if (c.measure_vector_width) row.vector_width = probe_vector_width(request, planned, this_executable());
   return row;
 }
 
@@ -191,6 +193,21 @@ BenchRow bench_row(const BenchConfig& c, const Scene& scene, const DeviceInfo& d
   return row;
 }
 
+// The table's "lanes" column: the widest vector width, "?" where unknown, "-" where not measured.
+std::string lanes_cell(const BenchRow& r) {
+  if (!r.vector_width) return "-";
+  return r.vector_width->known ? std::to_string(r.vector_width->widest) : "?";
+}
+
+nlohmann::json vector_width_json(const BenchRow& r) {
+  if (!r.vector_width) return {{"widest", nullptr}, {"why", "not measured (--no-vector-width)"}};
+  const VectorWidthReport& v = *r.vector_width;
+  if (!v.known) return {{"widest", nullptr}, {"why", v.why}};
+  nlohmann::json loops = nlohmann::json::object();
+  for (const auto& [width, count] : v.loops_by_width) loops[std::to_string(width)] = count;
+  return {{"widest", v.widest}, {"loops", loops}, {"not_vectorised", v.not_vectorised}};
+}
+
 std::string format_rate(const Spread& s) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.2f [%.2f-%.2f]", s.median * 1e-6, s.min * 1e-6, s.max * 1e-6);
@@ -248,22 +265,23 @@ std::vector<BenchRow> run_bench(const BenchConfig& c, bool show_progress) {
 std::string bench_table(const std::vector<BenchRow>& rows) {
   std::ostringstream o;
   char line[512];
-  std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %s\n", "scene",
-                "form", "loop", "kernel", "prec", "est", "wg", "M paths/s med [min-max]", "M segments/s med [min-max]",
-                "M paths/CPU-s", "build cold/cached s", "device");
+  std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %-5s %s\n",
+                "scene", "form", "loop", "kernel", "prec", "est", "wg", "M paths/s med [min-max]",
+                "M segments/s med [min-max]", "M paths/CPU-s", "build cold/cached s", "lanes", "device");
   o << line;
   for (const BenchRow& r : rows) {
     char build[32];
     std::snprintf(build, sizeof build, "%.2f/%.2f", r.build_cold_s, r.build_cached_s);
     char per_cpu[32];
     std::snprintf(per_cpu, sizeof per_cpu, "%.2f", r.paths_per_cpu_s.median * 1e-6);
-    std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %s\n",
+    std::snprintf(line, sizeof line, "%-22s %-10s %-8s %-11s %-6s %-4s %-5s %-24s %-24s %-16s %-13s %-5s %s\n",
                   r.scene.c_str(), r.form.c_str(), r.loop.empty() ? "-" : r.loop.c_str(), r.kernel.c_str(),
                   r.precision.c_str(), r.estimator.c_str(),
                   r.local_size ? std::to_string(r.local_size).c_str() : "auto",
                   format_rate(r.paths_per_s).c_str(), format_rate(r.segments_per_s).c_str(), per_cpu, build,
-                  (r.device + (r.cpu_vector_bits == "512" ? " (512-bit vectors)" : "")).c_str());
+                  lanes_cell(r).c_str(), (r.device + (r.cpu_vector_bits == "512" ? " (512-bit vectors)" : "")).c_str());
     o << line;
+    if (r.vector_width) o << "    vector width: " << r.vector_width->describe() << "\n";
     if (!r.stage_seconds.empty()) {
       o << "    stages (median s/run):";
       for (const auto& [label, s] : r.stage_seconds) {
@@ -312,7 +330,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
                           {"paths_per_s", spread(r.paths_per_s)},
                           {"segments_per_s", spread(r.segments_per_s)}, {"paths_per_cpu_s", spread(r.paths_per_cpu_s)},
-                          {"stage_seconds", stages}};
+                          {"stage_seconds", stages}, {"vector_width", vector_width_json(r)}};
     if (!r.ranks.empty()) {
       row["ranks"] = nlohmann::json::array();
       for (const RankRate& k : r.ranks)

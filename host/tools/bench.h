@@ -6,6 +6,7 @@
 // renders over ranks, on the job's first 1, 2, .. K ranks: paths/s and efficiency per rank count.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "render/renderer.h"
 #include "scene/bvh_builders.h"
 #include "scene/scene.h"
+#include "tools/vector_width.h"
 
 namespace clpt {
 
@@ -42,6 +44,9 @@ struct BenchConfig {
   // the same fp64 support); rank 0 times each row alone, the others idle, then the row's render
   // runs on the first 1 .. K ranks (BenchRow::ranks).
   RankGroup* ranks = nullptr;
+  // Measure each row's vector width (tools/vector_width.h): one extra cold compile per row in a
+  // child process. Only where this process is the clpt executable (the probe reruns it).
+  bool measure_vector_width = false;
 };
 
 struct Spread {
@@ -79,6 +84,7 @@ struct BenchRow {
   Spread paths_per_cpu_s;
   std::vector<std::pair<std::string, double>> stage_seconds;  // median per run, wavefront only
   std::vector<RankRate> ranks;  // an MPI job, at rank 0: 1 .. K ranks; else empty
+  std::optional<VectorWidthReport> vector_width;  // unset: not measured (--no-vector-width)
   // Identifies the row across runs (for --baseline); names a builder other than clpt and a
   // vector width other than the default.
   std::string key() const;
