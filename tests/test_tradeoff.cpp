@@ -359,5 +359,53 @@ TEST(TradeoffGnuplot, OneDataBlockPerCurveAndQuotedStrings) {
   EXPECT_NE(script.find("first 0.06"), std::string::npos);  // the target line
 }
 
+// dominated_by: beaten at every common budget in RMSE, clearly at one, and in no more time.
+TEST(TradeoffDominance, LowerCurveInNoMoreTimeDominates) {
+  const Combination mega = combination(ExecutionForm::Megakernel), wave = combination(ExecutionForm::Wavefront);
+  const TradeoffResult r = two_curve_result();
+  EXPECT_EQ(dominated_by(r.runs, mega.label()), std::vector<std::string>{wave.label()});
+  EXPECT_TRUE(dominated_by(r.runs, wave.label()).empty());
+  EXPECT_TRUE(dominated_by(r.runs, "no/such/combination").empty());
+}
+
+TEST(TradeoffDominance, CrossingCurvesNoiseAndSlowerRunsDoNotDominate) {
+  const Combination a = combination(ExecutionForm::Megakernel), b = combination(ExecutionForm::Wavefront);
+  // The curves cross: b is lower at 1 s, higher at 2 s.
+  const std::vector<TradeoffRun> crossing = {budget_run(a, 1, 1, 0.1), budget_run(a, 2, 2, 0.05),
+                                             budget_run(b, 1, 1, 0.08), budget_run(b, 2, 2, 0.06)};
+  EXPECT_TRUE(dominated_by(crossing, a.label()).empty());
+  EXPECT_TRUE(dominated_by(crossing, b.label()).empty());
+  // b lower everywhere, but by less than kDominanceMargin: within the curves' own spread.
+  const std::vector<TradeoffRun> close = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1, 0.097)};
+  EXPECT_TRUE(dominated_by(close, a.label()).empty());
+  // b lower, but its run took more than kDominanceTimeSlack longer.
+  const std::vector<TradeoffRun> slower = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1.2, 0.05)};
+  EXPECT_TRUE(dominated_by(slower, a.label()).empty());
+  // Within the slack it is the same time.
+  const std::vector<TradeoffRun> same_time = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1.05, 0.05)};
+  EXPECT_EQ(dominated_by(same_time, a.label()), std::vector<std::string>{b.label()});
+  // No budget in common, and fixed-spp runs: nothing to compare.
+  TradeoffRun fixed = budget_run(b, 0, 0.5, 0.01);
+  fixed.fixed_spp = 256;
+  const std::vector<TradeoffRun> apart = {budget_run(a, 1, 1, 0.1), budget_run(b, 2, 1, 0.01), fixed};
+  EXPECT_TRUE(dominated_by(apart, a.label()).empty());
+}
+
+TEST(TradeoffDominance, InTheTableTheJsonAndThePlot) {
+  const TradeoffResult r = two_curve_result();
+  const std::string table = time_to_error_table(r);
+  EXPECT_NE(table.find("robust/book/megakernel/dev0: dominated by robust/book/wavefront/dev0"), std::string::npos)
+      << table;
+  const nlohmann::json j = nlohmann::json::parse(tradeoff_json(r));
+  ASSERT_EQ(j["combinations"].size(), 2u);
+  EXPECT_EQ(j["combinations"][0]["dominated_by"], nlohmann::json::array({"robust/book/wavefront/dev0"}));
+  EXPECT_EQ(j["combinations"][1]["dominated_by"], nlohmann::json::array());
+  const std::string script = gnuplot_script(r, "/tmp/x.png");
+  EXPECT_NE(script.find("dt 2 title 'robust/book/megakernel/dev0 (dominated)'"), std::string::npos) << script;
+  TradeoffResult none = r;
+  none.runs = {budget_run(combination(ExecutionForm::Megakernel), 1, 1, 0.1)};
+  EXPECT_NE(time_to_error_table(none).find("no combination is beaten"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace clpt

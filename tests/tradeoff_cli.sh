@@ -68,6 +68,8 @@ assert len(j["runs"]) == 1 and j["runs"][0]["form"] == "wavefront", j["runs"]
 assert j["reference"]["width"] == 32 and j["reference"]["spp"] == 256, j["reference"]
 t = j["targets"][0]
 assert t["rmse"] == 0.5 and t["time_to_reach"][0]["status"] in ("interpolated", "at_or_before_smallest_budget"), t
+# One combination: nothing can dominate it, and it says so with an empty list.
+assert [c["dominated_by"] for c in j["combinations"]] == [[]], j["combinations"]
 print("ok: runs.json")
 EOF
 

@@ -118,6 +118,36 @@ TimeToError time_to_reach(const std::vector<CurvePoint>& curve, double target_rm
   return {Reach::NotReached, 0};
 }
 
+std::vector<std::string> dominated_by(const std::vector<TradeoffRun>& runs, const std::string& label) {
+  // Budget -> run of `label`.
+  std::vector<const TradeoffRun*> own;
+  for (const TradeoffRun& r : runs)
+    if (r.budget_s > 0 && r.combination.label() == label) own.push_back(&r);
+  std::vector<std::string> out;
+  if (own.empty()) return out;
+  std::vector<std::string> others;
+  for (const TradeoffRun& r : runs) {
+    const std::string other = r.combination.label();
+    if (r.budget_s > 0 && other != label && std::find(others.begin(), others.end(), other) == others.end())
+      others.push_back(other);
+  }
+  for (const std::string& other : others) {
+    int common = 0;
+    bool never_worse = true, once_clearly_better = false;
+    for (const TradeoffRun* a : own)
+      for (const TradeoffRun& b : runs) {
+        if (b.budget_s != a->budget_s || b.combination.label() != other) continue;
+        ++common;
+        const bool finite = std::isfinite(b.error.rmse) && std::isfinite(a->error.rmse);
+        if (!finite || b.render_s > a->render_s * (1 + kDominanceTimeSlack) || b.error.rmse > a->error.rmse)
+          never_worse = false;
+        if (finite && b.error.rmse <= a->error.rmse * (1 - kDominanceMargin)) once_clearly_better = true;
+      }
+    if (common > 0 && never_worse && once_clearly_better) out.push_back(other);
+  }
+  return out;
+}
+
 Combination TargetFrom::applied_to(const Combination& first) const {
   Combination c = first;
   if (precision) c.precision = *precision;

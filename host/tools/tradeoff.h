@@ -107,6 +107,17 @@ struct TimeToError {
 // non-finite values are ignored. No extrapolation on either side.
 TimeToError time_to_reach(const std::vector<CurvePoint>& curve, double target_rmse);
 
+// Which combinations beat `label` in both time and error. B dominates A when they ran at least
+// one time budget in common and at every common budget B's run took no longer than A's (within
+// kDominanceTimeSlack: a budget is a time limit, so runs of one budget end a little apart) and
+// reached an RMSE no higher, and at one budget at least an RMSE lower by kDominanceMargin or
+// more (a clearly lower curve, not two curves within the spread of their own noise). A
+// dominated combination is never the one to pick: B gives a better image in the same time.
+// Fixed-spp runs (budget 0) are not compared. Labels in the order of first appearance in `runs`.
+constexpr double kDominanceTimeSlack = 0.10;  // B's render time <= 1.10 x A's
+constexpr double kDominanceMargin = 0.05;     // B's RMSE <= 0.95 x A's at one budget at least
+std::vector<std::string> dominated_by(const std::vector<TradeoffRun>& runs, const std::string& label);
+
 // An RMSE to reach, and where it came from (for the table).
 struct ErrorTarget {
   double rmse = 0;

@@ -193,6 +193,9 @@ std::string tradeoff_json(const TradeoffResult& result) {
     }
     j["targets"].push_back({{"rmse", json_number(target.rmse)}, {"source", target.source}, {"time_to_reach", times}});
   }
+  j["combinations"] = nlohmann::json::array();
+  for (const Combination& c : result.combinations)
+    j["combinations"].push_back({{"label", c.label()}, {"dominated_by", dominated_by(result.runs, c.label())}});
   return j.dump(2) + "\n";
 }
 
@@ -225,6 +228,17 @@ std::string time_to_error_table(const TradeoffResult& result) {
       out << printf_string("  %-13s", format_reach(time_to_reach(curve, target.rmse)).c_str());
     out << "\n";
   }
+  std::string dominated;
+  for (const Combination& c : result.combinations) {
+    const std::vector<std::string> by = dominated_by(result.runs, c.label());
+    if (by.empty()) continue;
+    dominated += "  " + c.label() + ": dominated by ";
+    for (size_t i = 0; i < by.size(); ++i) dominated += (i ? ", " : "") + by[i];
+    dominated += "\n";
+  }
+  out << (dominated.empty() ? std::string("no combination is beaten by another in both time and error\n")
+                            : "beaten in both time and error (lower RMSE at every common budget, no longer):\n" +
+                                  dominated);
   return out.str();
 }
 
@@ -247,8 +261,11 @@ std::string gnuplot_script(const TradeoffResult& result, const std::string& png_
         block << printf_string("%.9g %.9g\n", p.seconds, p.rmse);
     if (block.str().empty()) continue;
     s << "$c" << i << " << EOD\n" << block.str() << "EOD\n";
-    plots.push_back("$c" + std::to_string(i) + " using 1:2 with linespoints lw 2 pt 7 title " +
-                    gnuplot_string(result.combinations[i].label()));
+    // A dominated combination (dominated_by) is drawn dashed and says so.
+    const bool dominated = !dominated_by(result.runs, result.combinations[i].label()).empty();
+    plots.push_back("$c" + std::to_string(i) + " using 1:2 with linespoints lw 2 pt 7" +
+                    (dominated ? " dt 2" : "") + " title " +
+                    gnuplot_string(result.combinations[i].label() + (dominated ? " (dominated)" : "")));
   }
   for (size_t i = 0; i < result.runs.size(); ++i) {
     const TradeoffRun& run = result.runs[i];
