@@ -75,6 +75,8 @@ DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, c
 
 }  // namespace
 
+bool DeviceInfo::is_pocl_cpu() const { return is_cpu && platform_name == kPoclPlatformName; }
+
 std::string DeviceInfo::label() const {
   return "device '" + name + "' (" + platform_name + (is_simulator ? ", a simulator)" : ")");
 }

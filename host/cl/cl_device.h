@@ -9,6 +9,9 @@
 
 namespace clpt {
 
+// The platform name PoCL reports (CL_PLATFORM_NAME).
+inline constexpr const char* kPoclPlatformName = "Portable Computing Language";
+
 struct DeviceInfo {
   int index = 0;  // position in list_devices(), as `clpt devices` shows it
   cl_platform_id platform = nullptr;
@@ -35,6 +38,9 @@ struct DeviceInfo {
 
   // "device 'NAME' (PLATFORM)" for messages; "(PLATFORM, a simulator)" for a simulator.
   std::string label() const;
+  // PoCL's CPU device (the platform clpt's tests and CI run on): the one whose compiler clpt can
+  // read (vectoriser remarks) and tune (kernels/cpu_tuning.h).
+  bool is_pocl_cpu() const;
 };
 
 // Every device of every platform, in platform order. Throws when there is no platform at all.

@@ -99,7 +99,7 @@ bool device_takes_512_bit_vectors(const DeviceInfo& device) {
   const bool host_has_avx512 = false;
 #endif
   // PoCL's device version names its LLVM target: "... HSTR: pthread-x86_64-pc-linux-gnu-<cpu>".
-  return device.is_cpu && device.platform_name == "Portable Computing Language" &&
+  return device.is_pocl_cpu() &&
          device.device_version.find("x86_64") != std::string::npos && host_has_avx512;
 }
 

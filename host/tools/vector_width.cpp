@@ -12,7 +12,6 @@
 namespace clpt {
 namespace {
 
-constexpr const char* kPoclPlatform = "Portable Computing Language";
 // A cold compile of the largest kernel takes seconds; this only stops a child that hangs.
 constexpr double kProbeTimeoutS = 300;
 // How much of a failing child's own message goes into the reason.
@@ -136,7 +135,7 @@ VectorWidthReport parse_vectoriser_remarks(const std::string& text) {
 }
 
 bool reports_vector_width(const DeviceInfo& device) {
-  return device.is_cpu && device.platform_name == kPoclPlatform;
+  return device.is_pocl_cpu();
 }
 
 std::vector<std::string> vector_width_probe_arguments(const RenderRequest& request, const DevicePlan& device,

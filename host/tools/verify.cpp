@@ -24,7 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kPoclPlatform = "Portable Computing Language";
 constexpr const char* kChannels = "RGB";
 
 // The directory holding this executable, or "" where /proc/self/exe cannot be read.
@@ -92,7 +91,7 @@ struct Resolved {
 
 const DeviceInfo* find_pocl_cpu(const std::vector<DeviceInfo>& all) {
   for (const DeviceInfo& d : all)
-    if (d.is_cpu && d.platform_name == kPoclPlatform) return &d;
+    if (d.is_pocl_cpu()) return &d;
   return nullptr;
 }
 
@@ -119,7 +118,7 @@ Resolved resolve(const VerifyConfig& config, VerifyReport& report) {
   if (r.mode == ReferenceMode::Auto) r.mode = pocl ? ReferenceMode::Device : ReferenceMode::Builtin;
   if (r.mode == ReferenceMode::Device && !pocl)
     throw Error(ExitCode::DeviceError, "--reference device: no PoCL CPU device (platform '" +
-                                           std::string(kPoclPlatform) +
+                                           std::string(kPoclPlatformName) +
                                            "') to render the reference; use --reference builtin "
                                            "(gemspt's images)");
 
