@@ -378,6 +378,15 @@ TEST(TradeoffDominance, CrossingCurvesNoiseAndSlowerRunsDoNotDominate) {
   // b lower everywhere, but by less than kDominanceMargin: within the curves' own spread.
   const std::vector<TradeoffRun> close = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1, 0.097)};
   EXPECT_TRUE(dominated_by(close, a.label()).empty());
+  // b 20% lower, but each image's own spread gives its RMSE a standard error of 0.008 (se(MSE) /
+  // (2 RMSE)): 0.02 is under twice the combined 0.0113, a difference within noise.
+  std::vector<TradeoffRun> noisy = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1, 0.08)};
+  for (TradeoffRun& run : noisy) run.error.bias_sq_stderr = 2 * run.error.rmse * 0.008;
+  EXPECT_NEAR(rmse_stderr(noisy[0].error), 0.008, 1e-12);
+  EXPECT_TRUE(dominated_by(noisy, a.label()).empty());
+  // The same 20% with standard errors of 0.004 (combined 0.0057, twice that 0.0113): clearly lower.
+  for (TradeoffRun& run : noisy) run.error.bias_sq_stderr = 2 * run.error.rmse * 0.004;
+  EXPECT_EQ(dominated_by(noisy, a.label()), std::vector<std::string>{b.label()});
   // b lower, but its run took more than kDominanceTimeSlack longer.
   const std::vector<TradeoffRun> slower = {budget_run(a, 1, 1, 0.1), budget_run(b, 1, 1.2, 0.05)};
   EXPECT_TRUE(dominated_by(slower, a.label()).empty());

@@ -118,6 +118,11 @@ TimeToError time_to_reach(const std::vector<CurvePoint>& curve, double target_rm
   return {Reach::NotReached, 0};
 }
 
+double rmse_stderr(const ErrorSplit& error) {
+  const double se = error.bias_sq_stderr / (2 * error.rmse);
+  return std::isfinite(se) && se > 0 ? se : 0;
+}
+
 std::vector<std::string> dominated_by(const std::vector<TradeoffRun>& runs, const std::string& label) {
   // Budget -> run of `label`.
   std::vector<const TradeoffRun*> own;
@@ -141,7 +146,10 @@ std::vector<std::string> dominated_by(const std::vector<TradeoffRun>& runs, cons
         const bool finite = std::isfinite(b.error.rmse) && std::isfinite(a->error.rmse);
         if (!finite || b.render_s > a->render_s * (1 + kDominanceTimeSlack) || b.error.rmse > a->error.rmse)
           never_worse = false;
-        if (finite && b.error.rmse <= a->error.rmse * (1 - kDominanceMargin)) once_clearly_better = true;
+        const double noise = std::hypot(rmse_stderr(a->error), rmse_stderr(b.error));
+        const double gain = a->error.rmse - b.error.rmse;
+        if (finite && gain >= kDominanceMargin * a->error.rmse && gain > kDominanceSigmas * noise)
+          once_clearly_better = true;
       }
     if (common > 0 && never_worse && once_clearly_better) out.push_back(other);
   }

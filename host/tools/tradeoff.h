@@ -110,12 +110,19 @@ TimeToError time_to_reach(const std::vector<CurvePoint>& curve, double target_rm
 // Which combinations beat `label` in both time and error. B dominates A when they ran at least
 // one time budget in common and at every common budget B's run took no longer than A's (within
 // kDominanceTimeSlack: a budget is a time limit, so runs of one budget end a little apart) and
-// reached an RMSE no higher, and at one budget at least an RMSE lower by kDominanceMargin or
-// more (a clearly lower curve, not two curves within the spread of their own noise). A
-// dominated combination is never the one to pick: B gives a better image in the same time.
-// Fixed-spp runs (budget 0) are not compared. Labels in the order of first appearance in `runs`.
+// reached an RMSE no higher, and at one budget at least an RMSE clearly lower: by more than
+// kDominanceSigmas combined standard errors of the two RMSEs (rmse_stderr, from each image's own
+// spread of squared errors), and by kDominanceMargin at least, a floor for what a user would call
+// better and for the error of the runs' timing, which no image measures. A dominated combination
+// is never the one to pick: B gives a better image in the same time. Fixed-spp runs (budget 0)
+// are not compared. Labels in the order of first appearance in `runs`.
 constexpr double kDominanceTimeSlack = 0.10;  // B's render time <= 1.10 x A's
-constexpr double kDominanceMargin = 0.05;     // B's RMSE <= 0.95 x A's at one budget at least
+constexpr double kDominanceSigmas = 2.0;      // B's RMSE lower by > 2 combined standard errors...
+constexpr double kDominanceMargin = 0.05;     // ...and by >= 5% of A's, at one budget at least
+// Standard error of a run's RMSE, from the standard error of its mean squared error (the pixel
+// channels' spread, ErrorSplit::bias_sq_stderr): se(MSE) / (2 RMSE), the first-order propagation
+// through the square root. 0 when unknown (fewer than two pixel channels, or an RMSE of 0).
+double rmse_stderr(const ErrorSplit& error);
 std::vector<std::string> dominated_by(const std::vector<TradeoffRun>& runs, const std::string& label);
 
 // An RMSE to reach, and where it came from (for the table).
