@@ -22,8 +22,8 @@ CLPT_INLINE Float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sa
   const uint k = sample & 15u;
   const Philox4 shuffle = philox4x32_10(philox4(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
   const Uniform4 u = sampler_uniform4(key, sampler, pixel, sample, 0u);
-  const bool grid = sampler == CLPT_SAMPLER_GRID;
-  const bool sobol = sampler == CLPT_SAMPLER_SOBOL;
+  const bool grid = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_GRID;
+  const bool sobol = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_SOBOL;
   const uint stratum = grid ? k : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
   const real jx = grid ? 0.5f : u.u0;
   const real jy = grid ? 0.5f : u.u1;
@@ -37,9 +37,9 @@ CLPT_INLINE Vec3 camera_ray_direction(const GpuCamera* camera, uint width, uint 
                                       uint row, Float2 subpixel) {
   const real fx = ((real)col + subpixel.x) / (real)width;
   const real fy = ((real)(height - 1u - row) + subpixel.y) / (real)height;
-  Vec3 on_sensor = v3_load(camera->sensor_center);
-  on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_right), fx - 0.5f);
-  on_sensor = v3_add_scaled(on_sensor, v3_load(camera->sensor_up), fy - 0.5f);
+  Vec3 on_sensor = v3_load_apart(camera->sensor_center);
+  on_sensor = v3_add_scaled(on_sensor, v3_load_apart(camera->sensor_right), fx - 0.5f);
+  on_sensor = v3_add_scaled(on_sensor, v3_load_apart(camera->sensor_up), fy - 0.5f);
   return v3_normalize(on_sensor);
 }
 

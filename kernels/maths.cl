@@ -81,12 +81,19 @@ CLPT_INLINE Vec3 v3_splat(real s) { return v3(s, s, s); }
  * compile time puts a private array (the camera in the parameters) in scratch memory on a GPU.
  * Float loads are not paired (SLP finds no profitable <2 x float> tree there), so the float
  * presets read v[1] directly; floats are paired where a reduction invites it (v3_unpaired). */
+#define CLPT_Y_APART(v) (get_global_size(1) == 1 ? (v)[1] : (v)[2])
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
-#define CLPT_Y_OF(v) (get_global_size(1) == 1 ? (v)[1] : (v)[2])
+#define CLPT_Y_OF(v) CLPT_Y_APART(v)
 #else
 #define CLPT_Y_OF(v) ((v)[1])
 #endif
 CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
+/* v3_load with y read apart in every preset, for the camera's vectors (camera.cl): with the
+ * sampler fixed at compile time (CLPT_SAMPLER), SLP pairs the x and y of the sensor's three
+ * vectors and of the ray direction built from them into <2 x float>, which stops the lockstep
+ * megakernel's work-item loop as above. They are the same for every work-item, so the extra read
+ * is one per work-group, not a gather. */
+CLPT_INLINE Vec3 v3_load_apart(const float v[3]) { return v3(v[0], CLPT_Y_APART(v), v[2]); }
 CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
 
 /* v itself, passed through memory that LLVM's SLP vectoriser cannot see through, in the CPU's

@@ -26,6 +26,15 @@
 #include "maths.cl"
 #include "rng.cl"
 
+/* The sampler in use: GpuRenderParams.sampler, or CLPT_SAMPLER where the host fixes it (every
+ * scene-specialised kernel, kernel_options.cpp). Fixed, the other samplers' arithmetic folds
+ * away: the selects below keep only one side, and the grid's camera sample needs no draw. */
+#ifdef CLPT_SAMPLER
+#define CLPT_SAMPLER_IN_USE(sampler) (CLPT_SAMPLER)
+#else
+#define CLPT_SAMPLER_IN_USE(sampler) (sampler)
+#endif
+
 /* Reverses the 32 bits of x (OpenCL C 1.2 has no built-in for it): swaps of bits, pairs,
  * nibbles and bytes reverse each 16-bit half, and a rotation by 16 swaps the halves. The last
  * step is the rotate() built-in, not shifts: written with shifts, clang recognises the whole
@@ -103,7 +112,7 @@ CLPT_INLINE SobolPoint sobol_point(uint sample_reversed, uint shuffle_seed, uint
  * (they are not independent of the first pair's, but the independent shuffle already
  * decorrelates the two pairs). */
 CLPT_INLINE Uniform4 sampler_uniform4(RngKey key, uint sampler, uint pixel, uint sample, uint dimension) {
-  const bool sobol = sampler == CLPT_SAMPLER_SOBOL;
+  const bool sobol = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_SOBOL;
   const Philox4 bits = philox4x32_10(
       philox4(pixel, sobol ? sample >> CLPT_SAMPLE_STREAM_BIT : sample, dimension, sobol ? 1u : 0u), key.k0, key.k1);
   const uint reversed = sobol_reverse_bits(sample & ((1u << CLPT_SAMPLE_STREAM_BIT) - 1u));

@@ -163,6 +163,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   KernelFeatures f;
   f.precision = precision;
   f.estimator = parse_estimator(scene.settings.estimator).value_or(Estimator::Book);
+  f.sampler = scene.settings.sampler;
   f.russian_roulette = scene.settings.rr_from >= 0;
   if (f.estimator == Estimator::Nee)
     f.light_count = static_cast<int>(light_caps(scene).size());
@@ -216,6 +217,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   o << " -DCLPT_HAS_TRIANGLE_LIGHTS=" << (features.generic || features.triangle_lights ? 1 : 0);
   o << " -DCLPT_HAS_RR=" << (features.generic || features.russian_roulette ? 1 : 0);
   if (!features.generic) o << " -DCLPT_ESTIMATOR=" << static_cast<int>(features.estimator);
+  if (!features.generic) o << " -DCLPT_SAMPLER=" << static_cast<int>(features.sampler);
   // A specialised kernel fixes its sphere loop, at 0 when the spheres are in the hierarchy or
   // there are none (then no sphere loop is compiled at all).
   if (!features.generic) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
@@ -244,6 +246,13 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                          : std::string(estimator_name(features.estimator)) +
                                (features.estimator == Estimator::Nee ? " (next-event estimation + MIS compiled in)"
                                                                      : " (no light sampling compiled)"))
+    << "\n";
+  o << "  sampler: "
+    << (features.generic ? std::string("chosen at run time (generic kernel)")
+                         : std::string(sampler_name(features.sampler)) +
+                               (features.sampler == Sampler::Grid ? " (fixed sub-pixel positions: no camera draw compiled)"
+                                : features.sampler == Sampler::Sobol ? " (Sobol points compiled)"
+                                                                     : " (Philox draws only; no Sobol points compiled)"))
     << "\n";
   o << "  Russian roulette: "
     << (features.generic ? "compiled, enabled at run time"

@@ -102,7 +102,10 @@ struct KernelFeatures {
   std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
   // Fixed with CLPT_ESTIMATOR unless `generic`, which reads GpuRenderParams.estimator at run time.
   Estimator estimator = Estimator::Book;
-  bool generic = false;           // every feature in; estimator and counts read at run time
+  // Fixed with CLPT_SAMPLER unless `generic`: only the chosen sampler's arithmetic is compiled
+  // (the grid's camera ray needs no random number at all; jitter's draws no Sobol points).
+  Sampler sampler = Sampler::Jitter;
+  bool generic = false;           // every feature in; estimator, sampler and counts read at run time
   bool russian_roulette = true;   // CLPT_HAS_RR
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
