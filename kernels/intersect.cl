@@ -99,7 +99,7 @@ CLPT_INLINE real sphere_intersect(__global const GpuSphere* sphere, Vec3 o, Vec3
   const real root_b = c_prime / q;
   /* Selects, not fmin/fmax: the compiler pairs fmin/fmax of the same operands into a 2-wide
    * vector operation, which stops PoCL's vectoriser across work-items (measured: 3.3x slower). */
-  const bool a_first = root_a < root_b;
+  const bool a_first = b_prime < (real)0;
   const real t_near = a_first ? root_a : root_b;
   const real t_far = a_first ? root_b : root_a;
   const real t_pick = t_near > t_min ? t_near : t_far;
@@ -138,7 +138,8 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
 #else
   for (uint i = 0; i < sphere_count; ++i) {
 #endif
-    const real t = sphere_intersect(&spheres[i], o, d, t_min);
+    const real t_min_chained = hit.t < (real)0 ? hit.t : t_min;
+    const real t = sphere_intersect(&spheres[i], o, d, t_min_chained);
     const bool closer = t < hit.t && (int)i != skip;
     hit.t = closer ? t : hit.t;
     hit.sphere = closer ? (int)i : hit.sphere;

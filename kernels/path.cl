@@ -340,7 +340,10 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
 #else
   __global const GpuMaterial* material = &scene->spheres[index].material;
 #endif
-  const bool emitter = !missed && material->kind == CLPT_MATERIAL_EMITTER;
+  /* Read unconditionally: behind the && it would be a load under a mask, which the loop
+   * vectoriser costs as a gather (scalarised on CPUs without fast gathers, docs/performance.md). */
+  const uint kind = material->kind;
+  const bool emitter = !missed && kind == CLPT_MATERIAL_EMITTER;
   bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
 
   const real t = missed ? (real)0 : hit.t;
