@@ -45,8 +45,8 @@ CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) {
 }
 CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return (real)s->radius + (real)s->radius_lo; }
 #else
-CLPT_INLINE Vec3 sphere_surface_point(__global const GpuSphere* s) { return v3_load_global(s->surface_point); }
-CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) { return v3_load_global(s->surface_normal); }
+CLPT_INLINE Vec3 sphere_surface_point(__global const GpuSphere* s) { return v3_load_sphere_field(s->surface_point); }
+CLPT_INLINE Vec3 sphere_surface_normal(__global const GpuSphere* s) { return v3_load_sphere_field(s->surface_normal); }
 CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return s->radius; }
 #endif
 
@@ -147,12 +147,48 @@ CLPT_INLINE Hit scene_intersect(__global const GpuSphere* spheres, uint sphere_c
   return hit;
 }
 
+/* A sphere's surface geometry in `real` (the accessors above). */
+typedef struct SphereGeometry {
+  Vec3 surface_point;  /* s0 */
+  Vec3 surface_normal; /* n0 */
+  real radius;
+  CLPT_ABI_PAD(real, 3)
+} SphereGeometry;
+
+CLPT_INLINE SphereGeometry sphere_geometry_of(__global const GpuSphere* s) {
+  SphereGeometry g;
+  g.surface_point = sphere_surface_point(s);
+  g.surface_normal = sphere_surface_normal(s);
+  g.radius = sphere_radius(s);
+  return g;
+}
+
+/* Sphere `index`'s geometry, index in [0, sphere count). Where gathers are slow (CLPT_NO_FAST_GATHER,
+ * maths.cl) by selects over the loop's spheres, whose reads are the same for every work-item;
+ * elsewhere one indexed read of each field. The same values either way. */
+CLPT_INLINE SphereGeometry sphere_geometry(__global const GpuSphere* spheres, int index) {
+#if CLPT_NO_FAST_GATHER && defined(CLPT_SPHERE_COUNT)
+  SphereGeometry g = sphere_geometry_of(&spheres[0]);
+#pragma unroll
+  for (uint i = 1u; i < CLPT_SPHERE_COUNT; ++i) {
+    const SphereGeometry c = sphere_geometry_of(&spheres[i]);
+    const bool pick = index == (int)i;
+    g.surface_point = v3_select(pick, c.surface_point, g.surface_point);
+    g.surface_normal = v3_select(pick, c.surface_normal, g.surface_normal);
+    g.radius = pick ? c.radius : g.radius;
+  }
+  return g;
+#else
+  return sphere_geometry_of(&spheres[index]);
+#endif
+}
+
 /* Outward unit normal at the hit point o + t d: (p - c) / r = n0 + (t d - e) / r, which keeps
  * full precision for huge r (it tends to n0). */
-CLPT_INLINE Vec3 sphere_normal_at(__global const GpuSphere* sphere, Vec3 o, Vec3 d, real t) {
-  const Vec3 e = v3_sub(sphere_surface_point(sphere), o);
-  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), (real)1 / sphere_radius(sphere));
-  return v3_normalize(v3_add(sphere_surface_normal(sphere), offset));
+CLPT_INLINE Vec3 sphere_normal_at(const SphereGeometry* sphere, Vec3 o, Vec3 d, real t) {
+  const Vec3 e = v3_sub(sphere->surface_point, o);
+  const Vec3 offset = v3_scale(v3_sub(v3_scale(d, t), e), (real)1 / sphere->radius);
+  return v3_normalize(v3_add(sphere->surface_normal, offset));
 }
 
 #endif

@@ -102,6 +102,9 @@ CLPT_INLINE LightSample sphere_cap_sample(__global const GpuLight* light, __glob
 #if !CLPT_HAS_TRIANGLE_LIGHTS
 /* Sphere lights only, picked uniformly. */
 CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count, Vec3 x, Uniform4 u) {
+#ifdef CLPT_LIGHT_COUNT
+  light_count = CLPT_LIGHT_COUNT; /* fixed: with one light the pick folds to entry 0, read alike by every path */
+#endif
   const uint index = min((uint)(u.u2 * (float)light_count), light_count - 1u);
   __global const GpuLight* light = &scene->lights[index];
   real cos_light;
@@ -184,13 +187,17 @@ CLPT_INLINE real light_pdf_of_hit(__global const GpuLight* lights, uint light_co
 #endif
     __global const GpuLight* light = &lights[i];
     const real height = (real)1 - v3_dot(normal, v3_load_global(light->cap_axis));
-    const bool in_cap = (int)light->sphere == sphere && height <= (real)light->one_minus_cos_cap * (real)1.001f;
+    /* `&`, not `&&`: the second test's reads behind a branch would be masked loads (maths.cl). */
+    const bool in_cap = ((int)light->sphere == sphere) & (height <= (real)light->one_minus_cos_cap * (real)1.001f);
+    /* The density is formed for every light and then chosen, not formed under the condition:
+     * there its reads would be masked loads, which the vectoriser costs as gathers (maths.cl). */
 #if CLPT_HAS_TRIANGLE_LIGHTS
     (void)count;
-    pdf = in_cap ? light_pick_pdf(t, v3_dot(normal, d), light->cap_area, (real)light->pick_probability) : pdf;
+    const real candidate = light_pick_pdf(t, v3_dot(normal, d), light->cap_area, (real)light->pick_probability);
 #else
-    pdf = in_cap ? light_solid_angle_pdf(t, v3_dot(normal, d), light->cap_area, count) : pdf;
+    const real candidate = light_solid_angle_pdf(t, v3_dot(normal, d), light->cap_area, count);
 #endif
+    pdf = in_cap ? candidate : pdf;
   }
   return pdf;
 }

@@ -38,6 +38,16 @@ typedef float real;
 
 #define CLPT_PI ((real)3.14159265358979323846)
 #define CLPT_INLINE inline __attribute__((always_inline))
+/* CLPT_NO_FAST_GATHER (kernel_options.cpp): 1 for a PoCL CPU whose LLVM tuning has no fast
+ * gathers, in a specialised kernel whose spheres are all in the loop (none in the hierarchy). Its
+ * compiler costs every per-lane indexed read as one scalar load per lane and then keeps the
+ * shading scalar, so the kernels read the hit sphere by selects over the loop's spheres
+ * (intersect.cl, path.cl) and the lockstep megakernel keeps its state in local memory
+ * (megakernel.cl); docs/performance.md, "CPUs without fast gathers". */
+#ifndef CLPT_NO_FAST_GATHER
+#define CLPT_NO_FAST_GATHER 0
+#endif
+
 /* Distance reported for "no hit". Finite on purpose: under -cl-fast-relaxed-math (which implies
  * -cl-finite-math-only) a compiler may fold comparisons with INFINITY. */
 #define CLPT_NO_HIT ((real)1e30f)
@@ -94,6 +104,14 @@ CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2])
  * megakernel's work-item loop as above. They are the same for every work-item, so the extra read
  * is one per work-group, not a gather. */
 CLPT_INLINE Vec3 v3_load_apart(const float v[3]) { return v3(v[0], CLPT_Y_APART(v), v[2]); }
+/* A buffer's float[3] as v3_load_global, with y read apart where the kernels pick a sphere's fields
+ * by selects (CLPT_NO_FAST_GATHER): the picks' reads are the same for every work-item, and SLP pairs
+ * adjacent ones as it pairs the camera's. */
+#if CLPT_NO_FAST_GATHER
+#define v3_load_sphere_field(v) v3((v)[0], CLPT_Y_APART(v), (v)[2])
+#else
+#define v3_load_sphere_field(v) v3_load_global(v)
+#endif
 CLPT_INLINE Vec3 v3_load_global(__global const float* v) { return v3(v[0], CLPT_Y_OF(v), v[2]); }
 
 /* v itself, passed through memory that LLVM's SLP vectoriser cannot see through, in the CPU's
@@ -126,7 +144,10 @@ CLPT_INLINE Vec3 v3_normalize(Vec3 a) { return v3_scale(a, (real)1 / clpt_sqrt(v
 /* Component-wise choice. Never write `c ? vec_a : vec_b` on Vec3: a select of a whole struct
  * stops PoCL's vectoriser ("instruction return type cannot be vectorized"). */
 CLPT_INLINE Vec3 v3_select(bool c, Vec3 a, Vec3 b) { return v3(c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z); }
-CLPT_INLINE bool v3_is_zero(Vec3 a) { return a.x == 0.0f && a.y == 0.0f && a.z == 0.0f; }
+/* `&`, not `&&`: a short-circuit puts the later components' reads behind a branch, and a load
+ * under a branch is a masked load to PoCL's vectoriser (costed as a gather, docs/performance.md
+ * "CPUs without fast gathers"). */
+CLPT_INLINE bool v3_is_zero(Vec3 a) { return (a.x == 0.0f) & (a.y == 0.0f) & (a.z == 0.0f); }
 
 typedef struct Float2 {
   real x, y;

@@ -36,14 +36,38 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
                            __global float* results) {
   __local uint alive_of[CLPT_LOCKSTEP_GROUP];
   __local uint any_alive;
+#if CLPT_NO_FAST_GATHER
+  /* On CPUs without fast gathers (kernel_options.cpp, docs/performance.md "CPUs without fast
+   * gathers") the paths' state between segments goes through local memory, field by field
+   * (path_state.h), rather than in variables carried round the loop. Why: PoCL runs LLVM's SLP
+   * vectoriser on each work-item's code before it builds the work-item loops; the loop-carried
+   * fields are PHI nodes of one type whose updates (path_select, v3_select) all have one shape,
+   * and with those CPUs' costs SLP packs four of them (origin x, y, z and direction x) into a
+   * <4 x float> PHI, and a work-item loop holding a vector-typed value is not vectorised at all.
+   * Through memory, with barriers between the store and the load, no PHI is left to pack. PoCL
+   * keeps values live across barriers in per-work-item arrays anyway, so the state costs about
+   * what it did: a load and a store per field and segment, contiguous across the work-items. */
+#define CLPT_LOCKSTEP_STATE(type, name, bytes, doc) __local type name[CLPT_LOCKSTEP_GROUP];
+  CLPT_PATH_FIELDS(CLPT_PATH_BUFFERS_OF, CLPT_LOCKSTEP_STATE) /* the wavefront's buffers, but the job index */
+#undef CLPT_LOCKSTEP_STATE
+#endif
   const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading);
   const uint jobs = job_count(&params);
   const uint job = (uint)get_global_id(0);
   const uint lid = (uint)get_local_id(0);
   const bool active = job < jobs;
   const uint j = active ? job : 0u;
-  PathState path = path_begin(&params, job_pixel(&params, slots, j), job_sample(&params, slots, j));
+  const uint pixel = job_pixel(&params, slots, j);
+  const uint sample = job_sample(&params, slots, j);
+  PathState path = path_begin(&params, pixel, sample);
   path.alive = active ? 1 : 0;
+  /* Always 0, but carried round the loop from a value the compiler cannot know (any_alive >> 1,
+   * any_alive being 1 where it is read): addresses of the form lid + slot_offset are then computed
+   * afresh each segment next to their use. Computed once before the loop, they would be pointers
+   * kept across the barriers, which PoCL stores per work-item as 64-bit values, and on CPUs
+   * without 512-bit registers a 64-bit value halves the width the work-item loops are vectorised
+   * with (8 -> 4 floats). */
+  uint slot_offset = 0u;
   for (;;) {
     PathState next = path;
 #if CLPT_HAS_BVH
@@ -71,7 +95,14 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
 #endif
     path = path_select(path.alive != 0, next, path);
     barrier(CLK_LOCAL_MEM_FENCE);
-    alive_of[lid] = (uint)path.alive;
+#if CLPT_NO_FAST_GATHER
+    {
+      const uint slot = lid + slot_offset;
+      const PathState* p = &path;
+      CLPT_PATH_STORE_FIELDS
+    }
+#endif
+    alive_of[lid + slot_offset] = (uint)path.alive;
     barrier(CLK_LOCAL_MEM_FENCE);
     if (lid == 0u) {
       uint any = 0u;
@@ -80,8 +111,22 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     if (any_alive == 0u) break;
+    slot_offset = any_alive >> 1;
+#if CLPT_NO_FAST_GATHER
+    {
+      const uint slot = lid + slot_offset;
+      PathState p;
+      CLPT_PATH_LOAD_FIELDS
+      p.pixel = pixel;
+      p.sample = sample;
+      p.alive = (int)alive_of[slot];
+      path = p;
+    }
+#endif
   }
-  if (active) job_result_store(results, job, jobs, path.radiance, path.segments);
+  /* The job index afresh (not `job`, which kept across the loop would be a 64-bit value). */
+  const uint job_done = (uint)get_global_id(0) + slot_offset;
+  if (job_done < jobs) job_result_store(results, job_done, jobs, path.radiance, path.segments);
 }
 #else
 CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,

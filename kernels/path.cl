@@ -108,23 +108,65 @@ CLPT_INLINE void path_intersect_hierarchy(const PathState* path, const SceneBuff
   scene_hierarchy_hit(scene, params, path->origin, path->direction, path->skip_sphere, hit);
 }
 
+/* A surface's material in private memory, read field by field (a struct copy would be lowered to
+ * vector loads, which stop PoCL's vectoriser). Unused fields cost nothing: their reads are dead. */
+typedef struct SurfaceMaterial {
+  uint kind;        /* CLPT_MATERIAL_* */
+  Vec3 reflectance; /* rho */
+  Vec3 emission;
+  real phong_exponent;
+  real ior;
+  CLPT_ABI_PAD(uint, 1)
+} SurfaceMaterial;
+
+CLPT_INLINE SurfaceMaterial material_of(__global const GpuMaterial* m) {
+  SurfaceMaterial s;
+  s.kind = m->kind;
+  s.reflectance = v3_load_sphere_field(m->reflectance);
+  s.emission = v3_load_sphere_field(m->emission);
+  s.phong_exponent = m->phong_exponent;
+  s.ior = m->ior;
+  return s;
+}
+
+/* Sphere `index`'s material, as sphere_geometry (intersect.cl) reads its geometry: by selects
+ * over the loop's spheres where gathers are slow, else by one indexed read of each field. */
+CLPT_INLINE SurfaceMaterial sphere_material(__global const GpuSphere* spheres, int index) {
+#if CLPT_NO_FAST_GATHER && defined(CLPT_SPHERE_COUNT)
+  SurfaceMaterial m = material_of(&spheres[0].material);
+#pragma unroll
+  for (uint i = 1u; i < CLPT_SPHERE_COUNT; ++i) {
+    const SurfaceMaterial c = material_of(&spheres[i].material);
+    const bool pick = index == (int)i;
+    m.kind = pick ? c.kind : m.kind;
+    m.reflectance = v3_select(pick, c.reflectance, m.reflectance);
+    m.emission = v3_select(pick, c.emission, m.emission);
+    m.phong_exponent = pick ? c.phong_exponent : m.phong_exponent;
+    m.ior = pick ? c.ior : m.ior;
+  }
+  return m;
+#else
+  return material_of(&spheres[index].material);
+#endif
+}
+
 /* Next direction and throughput weight at a non-emitting surface. Materials left out of the
  * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
-CLPT_INLINE Vec3 material_sample(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
-  const Vec3 rho = v3_load_global(m->reflectance);
+CLPT_INLINE Vec3 material_sample(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
+  const Vec3 rho = m->reflectance;
 #if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
   const uint kind = m->kind;
 #endif
   Vec3 next = bsdf_lambertian_sample(d, normal, rho, u, weight);
 #if CLPT_HAS_PHONG
   Vec3 phong_weight;
-  const Vec3 phong = bsdf_phong_sample(d, normal, rho, (real)m->phong_exponent, u, &phong_weight);
+  const Vec3 phong = bsdf_phong_sample(d, normal, rho, m->phong_exponent, u, &phong_weight);
   next = v3_select(kind == CLPT_MATERIAL_PHONG, phong, next);
   *weight = v3_select(kind == CLPT_MATERIAL_PHONG, phong_weight, *weight);
 #endif
 #if CLPT_HAS_GLASS
   Vec3 glass_weight;
-  const Vec3 glass = bsdf_glass_sample(d, normal, rho, (real)m->ior, u, &glass_weight);
+  const Vec3 glass = bsdf_glass_sample(d, normal, rho, m->ior, u, &glass_weight);
   next = v3_select(kind == CLPT_MATERIAL_GLASS, glass, next);
   *weight = v3_select(kind == CLPT_MATERIAL_GLASS, glass_weight, *weight);
 #endif
@@ -139,15 +181,15 @@ CLPT_INLINE Vec3 material_sample(__global const GpuMaterial* m, Vec3 d, Vec3 nor
 
 /* f cos towards wi and the BSDF sampler's density of wi, at a non-emitting surface (next-event
  * estimation). Glass and the mirror are specular: 0 and 0. */
-CLPT_INLINE Vec3 material_eval(__global const GpuMaterial* m, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
-  const Vec3 rho = v3_load_global(m->reflectance);
+CLPT_INLINE Vec3 material_eval(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
+  const Vec3 rho = m->reflectance;
 #if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
   const uint kind = m->kind;
 #endif
   Vec3 f_cos = bsdf_lambertian_eval(d, normal, rho, wi, pdf);
 #if CLPT_HAS_PHONG
   real phong_pdf;
-  const Vec3 phong = bsdf_phong_eval(d, normal, rho, (real)m->phong_exponent, wi, &phong_pdf);
+  const Vec3 phong = bsdf_phong_eval(d, normal, rho, m->phong_exponent, wi, &phong_pdf);
   f_cos = v3_select(kind == CLPT_MATERIAL_PHONG, phong, f_cos);
   *pdf = kind == CLPT_MATERIAL_PHONG ? phong_pdf : *pdf;
 #endif
@@ -189,9 +231,9 @@ typedef struct SurfacePoint {
 
 CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Vec3 o, Vec3 d, real t) {
   SurfacePoint s;
-  __global const GpuSphere* sphere = &scene->spheres[hit.sphere < 0 ? 0 : hit.sphere];
+  const SphereGeometry sphere = sphere_geometry(scene->spheres, hit.sphere < 0 ? 0 : hit.sphere);
   s.point = v3_add_scaled(o, d, t);
-  s.normal = sphere_normal_at(sphere, o, d, t);
+  s.normal = sphere_normal_at(&sphere, o, d, t);
   s.on_triangle = 0;
 #if CLPT_HAS_TRIANGLES
   const int tri = hit.triangle < 0 ? 0 : hit.triangle;
@@ -259,7 +301,7 @@ CLPT_INLINE ShadowQuery no_shadow_query(void) {
  * (throughput not yet applied), fills the ray into *q for that test, and counts the shadow ray
  * in *segments. */
 CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params,
-                            int index, __global const GpuMaterial* m, const SurfacePoint* surface, uint* segments,
+                            int index, const SurfaceMaterial* m, const SurfacePoint* surface, uint* segments,
                             ShadowQuery* q) {
   /* With no light, light_sample reads the buffer's placeholder entry and returns pdf 0 (no early
    * return: a branch here would stop PoCL's vectoriser). */
@@ -307,7 +349,10 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
   const Vec3 emission = v3_load_global(scene->spheres[ls.sphere].material.emission);
 #endif
-  const bool visible = ls.pdf > (real)0 && loop_clear && !v3_is_zero(f_cos) && leaves_consistently(surface, ls.direction);
+  /* int operands and `&`, not `&&`: f_cos's reads behind a short-circuit would be masked loads
+   * (maths.cl, v3_is_zero). */
+  const bool visible = ((ls.pdf > (real)0) & (int)loop_clear & !v3_is_zero(f_cos) &
+                        (int)leaves_consistently(surface, ls.direction)) != 0;
   const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
   return v3_scale(v3_mul(f_cos, emission), weight);
 }
@@ -335,14 +380,12 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
   const int index = hit.sphere < 0 ? 0 : hit.sphere;
 #if CLPT_HAS_TRIANGLES
   const bool on_triangle = hit.triangle >= 0;
-  __global const GpuMaterial* material =
-      on_triangle ? &scene->triangle_shading[hit.triangle].material : &scene->spheres[index].material;
+  const SurfaceMaterial material = material_of(on_triangle ? &scene->triangle_shading[hit.triangle].material
+                                                           : &scene->spheres[index].material);
 #else
-  __global const GpuMaterial* material = &scene->spheres[index].material;
+  const SurfaceMaterial material = sphere_material(scene->spheres, index);
 #endif
-  /* Read unconditionally: behind the && it would be a load under a mask, which the loop
-   * vectoriser costs as a gather (scalarised on CPUs without fast gathers, docs/performance.md). */
-  const uint kind = material->kind;
+  const uint kind = material.kind;
   const bool emitter = !missed && kind == CLPT_MATERIAL_EMITTER;
   bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
 
@@ -352,37 +395,40 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
   /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */
   const int sphere_index = surface.on_triangle ? -1 : index;
 
-  Vec3 emitted = v3_mul(path->throughput, v3_load_global(material->emission));
+  Vec3 emitted = v3_mul(path->throughput, material.emission);
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
     /* A BSDF-sampled ray that found a light competes with the light sample taken before it. An
      * emitting triangle's density comes from its shading record; without triangle lights it is
      * no sampled light (density 0: the hit keeps its full weight). */
-    real light_pdf = path->bsdf_pdf > (real)0
-        ? light_pdf_of_hit(scene->lights, params->light_count, sphere_index, normal, path->direction, t) : (real)0;
+    /* Evaluated for every path, then chosen: formed under the condition, its reads would be
+     * masked loads (maths.cl, v3_is_zero). */
+    const real hit_pdf = light_pdf_of_hit(scene->lights, params->light_count, sphere_index, normal, path->direction, t);
+    real light_pdf = path->bsdf_pdf > (real)0 ? hit_pdf : (real)0;
 #if CLPT_HAS_TRIANGLE_LIGHTS
     const real triangle_pdf = triangle_light_pdf_of_hit(&scene->triangle_shading[surface.on_triangle ? hit.triangle : 0],
                                                         surface.triangle.geometric, path->direction, t);
     light_pdf = surface.on_triangle ? triangle_pdf : light_pdf;
 #endif
-    emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? mis_power(path->bsdf_pdf, light_pdf) : (real)1);
+    const real hit_weight = mis_power(path->bsdf_pdf, light_pdf); /* likewise formed for every path */
+    emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? hit_weight : (real)1);
   }
 #endif
   path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
 
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample, 1u + path->bounce);
   Vec3 weight;
-  const Vec3 next = material_sample(material, path->direction, normal, u, &weight);
+  const Vec3 next = material_sample(&material, path->direction, normal, u, &weight);
   weight = v3_select(leaves_consistently(&surface, next), weight, v3_splat((real)0));
 
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
     uint shadow_segments = 0u;
-    const Vec3 light = next_event(path, scene, params, sphere_index, material, &surface, &shadow_segments, shadow);
+    const Vec3 light = next_event(path, scene, params, sphere_index, &material, &surface, &shadow_segments, shadow);
     shadow->light = v3_select(scatters, v3_mul(path->throughput, light), v3_splat((real)0));
     path->segments += scatters ? shadow_segments : 0u;
     real next_pdf;
-    (void)material_eval(material, path->direction, normal, next, &next_pdf);
+    (void)material_eval(&material, path->direction, normal, next, &next_pdf);
     path->bsdf_pdf = next_pdf;
   }
 #endif

@@ -30,7 +30,7 @@
  * scene-specialised kernel, kernel_options.cpp). Fixed, the other samplers' arithmetic folds
  * away: the selects below keep only one side, and the grid's camera sample needs no draw. */
 #ifdef CLPT_SAMPLER
-#define CLPT_SAMPLER_IN_USE(sampler) (CLPT_SAMPLER)
+#define CLPT_SAMPLER_IN_USE(sampler) ((void)(sampler), CLPT_SAMPLER)
 #else
 #define CLPT_SAMPLER_IN_USE(sampler) (sampler)
 #endif

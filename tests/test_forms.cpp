@@ -27,6 +27,7 @@ struct Variant {
   bool adaptive = false;
   uint64_t spp = 32;
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;
+  SphereReads sphere_reads = SphereReads::Auto;
 };
 
 // The book scene with triangles and a hierarchy: its left ball replaced by a tessellated sphere
@@ -64,6 +65,7 @@ std::vector<float> render_variant(const std::string& scene_name, const Variant& 
     request.adaptive = v.adaptive;
     request.scene.settings.spp = int(v.spp);
     request.cpu_vector_bits = v.cpu_vector_bits;
+    request.sphere_reads = v.sphere_reads;
   });
 }
 
@@ -132,6 +134,26 @@ TEST_P(FormsAgree, WideCpuVectorsEqualDefault) {
       Variant narrow = wide;
       narrow.cpu_vector_bits = CpuVectorBits::Bits256;
       expect_same_image(render_variant(GetParam(), wide), render_variant(GetParam(), narrow));
+    }
+  }
+}
+
+// The hit sphere read by selects over the loop's spheres, with the lockstep state in local memory
+// (--sphere-reads selects, kernels/maths.cl CLPT_NO_FAST_GATHER), gives the image of indexed
+// reads: both forms, both estimators, the grid sampler too (its camera folds to no draw).
+TEST_P(FormsAgree, SphereReadsBySelectEqualIndexed) {
+  for (const char* estimator : {"book", "nee"}) {
+    SCOPED_TRACE(estimator);
+    for (ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
+      for (Sampler sampler : {Sampler::Jitter, Sampler::Grid}) {
+        Variant selects{form, 0, false, 0, MegakernelLoop::Auto, estimator};
+        selects.sampler = sampler;
+        selects.spp = 16;
+        selects.sphere_reads = SphereReads::Selects;
+        Variant indexed = selects;
+        indexed.sphere_reads = SphereReads::Indexed;
+        expect_same_image(render_variant(GetParam(), selects), render_variant(GetParam(), indexed));
+      }
     }
   }
 }

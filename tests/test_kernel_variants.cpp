@@ -107,5 +107,52 @@ TEST(KernelOptions, CpuVectorBits512TunesPoclKernelsOnAvx512) {
   }
 }
 
+// --sphere-reads auto: selects on PoCL CPUs whose LLVM CPU has no fast gathers, read from the
+// device version; indexed on the others and on every non-PoCL device. Selects are compiled only
+// into specialised kernels whose spheres are all in the loop.
+TEST(KernelOptions, SphereReadsBySelectWhereTheCompilerHasNoFastGathers) {
+  DeviceInfo pocl;
+  pocl.name = "pthread-haswell-AMD EPYC";
+  pocl.platform_name = "Portable Computing Language";
+  pocl.is_cpu = true;
+  const auto on = [&pocl](const std::string& llvm_cpu) {
+    pocl.device_version = "OpenCL 3.0 PoCL HSTR: pthread-x86_64-pc-linux-gnu-" + llvm_cpu + ", driver 3.1";
+    return pocl;
+  };
+  EXPECT_EQ(pocl_llvm_cpu(on("skylake-avx512")), "skylake-avx512");
+  for (const char* slow : {"haswell", "broadwell", "znver2", "znver3", "x86-64"}) {
+    SCOPED_TRACE(slow);
+    EXPECT_TRUE(device_lacks_fast_gathers(on(slow)));
+    EXPECT_TRUE(sphere_reads_by_select_for(SphereReads::Auto, on(slow), Precision::Robust));
+    EXPECT_TRUE(sphere_reads_by_select_for(SphereReads::Auto, on(slow), Precision::Double));
+    EXPECT_FALSE(sphere_reads_by_select_for(SphereReads::Auto, on(slow), Precision::Fast));
+    EXPECT_FALSE(sphere_reads_by_select_for(SphereReads::Indexed, on(slow), Precision::Robust));
+  }
+  for (const char* fast : {"skylake", "skylake-avx512", "icelake-server", "sapphirerapids", "knl"}) {
+    SCOPED_TRACE(fast);
+    EXPECT_FALSE(device_lacks_fast_gathers(on(fast)));
+    EXPECT_FALSE(sphere_reads_by_select_for(SphereReads::Auto, on(fast), Precision::Robust));
+    EXPECT_TRUE(sphere_reads_by_select_for(SphereReads::Selects, on(fast), Precision::Fast));
+  }
+  DeviceInfo gpu;
+  gpu.platform_name = "NVIDIA CUDA";
+  gpu.is_gpu = true;
+  gpu.device_version = "OpenCL 3.0 CUDA";
+  EXPECT_EQ(pocl_llvm_cpu(gpu), "");
+  EXPECT_FALSE(device_lacks_fast_gathers(gpu));
+  EXPECT_EQ(parse_sphere_reads("selects"), SphereReads::Selects);
+  EXPECT_FALSE(parse_sphere_reads("gathers").has_value());
+
+  KernelFeatures f = features_for_scene(load_book_scene("diffuse"));
+  f.no_fast_gather = true;
+  EXPECT_NE(kernel_build_options(f).find(" -DCLPT_NO_FAST_GATHER=1"), std::string::npos);
+  EXPECT_NE(explain_kernel_options(f).find("hit sphere reads: selects over the loop's spheres"), std::string::npos);
+  KernelFeatures generic = generic_features();
+  generic.no_fast_gather = true;
+  EXPECT_EQ(kernel_build_options(generic).find("CLPT_NO_FAST_GATHER"), std::string::npos);
+  f.spheres_in_bvh = true;
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_NO_FAST_GATHER"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace clpt::test

@@ -100,6 +100,7 @@ RenderRequest lockstep_request() {
   request.scene_loops = SceneLoops::Rolled;
   request.local_size = 32;
   request.cpu_vector_bits = CpuVectorBits::Bits512;
+  request.sphere_reads = SphereReads::Selects;
   return request;
 }
 
@@ -118,7 +119,7 @@ TEST(VectorWidth, ProbeArgumentsCarryTheKernelChoices) {
   for (const char* expected :
        {"scenes/glass.toml ", "--device 3 ", "--precision double ", "--form megakernel ",
         "--megakernel-loop lockstep ", "--scene-loops rolled ", "--intersection surface ", "--estimator nee ",
-        "--rr-from 3 ", "--local-size 32 ", "--cpu-vector-bits 512 ", "--width 16 --height 8 --spp 1 --sampler jitter --no-cache -q -o /tmp/x.pfm "})
+        "--rr-from 3 ", "--local-size 32 ", "--cpu-vector-bits 512 ", "--sphere-reads selects ", "--width 16 --height 8 --spp 1 --sampler jitter --no-cache -q -o /tmp/x.pfm "})
     EXPECT_NE(joined.find(expected), std::string::npos) << expected << " not in: " << joined;
   EXPECT_EQ(joined.find("--generic"), std::string::npos) << joined;
 }

@@ -16,16 +16,17 @@ if ! "$clpt" devices 2>/dev/null | grep -q "(default)" ||
   echo "SKIP: the default device is not PoCL's pthread CPU device"; exit 77
 fi
 # PoCL names the LLVM CPU it compiles for at the end of the device version ("HSTR:
-# pthread-x86_64-pc-linux-gnu-haswell"). LLVM 15 vectorises the kernels' per-lane reads of the hit
-# sphere (gathers) and their masked loads only for CPUs it tunes as having fast gathers: Skylake
-# and later Intel cores and every AVX-512 CPU. For the others (Haswell, Broadwell, AMD Zen 1-3)
-# its cost model keeps the lockstep megakernel scalar: a known limitation, measured and explained
-# in docs/performance.md ("CPUs without fast gathers"). Skipped there, and said so.
+# pthread-x86_64-pc-linux-gnu-haswell"). LLVM 15 costs gathers as scalar loads on CPUs without its
+# fast-gather tuning (Haswell, Broadwell, AMD Zen 1-3: docs/performance.md, "CPUs without fast
+# gathers"); there the kernels read the hit sphere by selects (--sphere-reads auto), which
+# vectorises the robust preset's megakernel on the book scenes, and that is what is checked; the
+# other presets and the hierarchy scene are known to stay scalar there and are listed, not checked.
 llvm_cpu=$("$clpt" devices 2>/dev/null | grep -o "HSTR: pthread-[^ ,]*" | head -1 | sed 's/.*-linux-gnu-//')
 case $llvm_cpu in
-  skylake*|cascadelake|cooperlake|cannonlake|icelake*|tigerlake|rocketlake|sapphirerapids|alderlake|knl|knm) ;;
-  *) echo "SKIP: PoCL compiles for LLVM CPU '$llvm_cpu', without fast gathers: its kernels stay scalar (docs/performance.md, \"CPUs without fast gathers\")"
-     exit 77 ;;
+  skylake*|cascadelake|cooperlake|cannonlake|icelake*|tigerlake|rocketlake|sapphirerapids|alderlake|raptorlake|meteorlake|knl|knm)
+    slow_gathers=0 ;;
+  *) slow_gathers=1
+     echo "NOTE: PoCL compiles for LLVM CPU '$llvm_cpu', without fast gathers: only the robust preset on the book scenes is checked" ;;
 esac
 failed=0
 # And a scene with a hierarchy (more spheres than the unrolled loop takes): the lockstep
@@ -36,6 +37,9 @@ for scene in diffuse specular glass "$work/hierarchy"; do
   for estimator in book nee; do
     for precision in fast robust double; do
       name=$(basename "$scene").$estimator.$precision
+      if [[ $slow_gathers == 1 && ( $precision != robust || $scene == /* ) ]]; then
+        echo "not checked on '$llvm_cpu': $name"; continue
+      fi
       POCL_VECTORIZER_REMARKS=1 POCL_CACHE_DIR=$work/pocl-$name CLPT_CACHE_DIR=$work/clpt-cache \
         "$clpt" render "$([[ $scene == /* ]] && echo "$scene" || echo "scenes/$scene").toml" --estimator "$estimator" --precision "$precision" --no-cache \
         --width 16 --height 8 --spp 1 --sampler jitter -q -o "$work/$name.pfm" > "$work/$name.log" 2>&1 ||
@@ -71,4 +75,8 @@ if grep -qw avx512f /proc/cpuinfo; then
   done
 fi
 test "$failed" -eq 0
-echo "vectorised: every book scene and a hierarchy scene x estimator x preset compile to vectorised work-item loops on PoCL"
+if [[ $slow_gathers == 1 ]]; then
+  echo "vectorised: the book scenes x estimator with the robust preset compile to vectorised work-item loops on PoCL ($llvm_cpu)"
+else
+  echo "vectorised: every book scene and a hierarchy scene x estimator x preset compile to vectorised work-item loops on PoCL"
+fi

@@ -22,6 +22,7 @@ struct BenchOptions {
   std::vector<std::string> bvh_builders = {"clpt"};
   std::string sampler = "jitter";
   std::string cpu_vector_bits = "auto";
+  std::string sphere_reads = "auto";
   std::string json, baseline;
   double tolerance = 10;
   bool no_vector_width = false;
@@ -40,6 +41,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.scenes = o.scenes;
   config.sampler = sampler_from_name(o.sampler).value();  // CLI11 checked the name
   config.cpu_vector_bits = *parse_cpu_vector_bits(o.cpu_vector_bits);
+  config.sphere_reads = *parse_sphere_reads(o.sphere_reads);
   config.precisions.clear();
   for (const std::string& p : o.precisions) config.precisions.push_back(*parse_precision(p));
   config.bvh_builders.clear();
@@ -92,6 +94,9 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "512 bits wide say so")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "256", "512"}));
+  cmd->add_option("--sphere-reads", o->sphere_reads, "As for render: auto, indexed or selects, for every row")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "indexed", "selects"}));
   cmd->add_option("--sampler", o->sampler,
                   "Sampler of every run (default jitter; the rows do not name it, so compare a --baseline "
                   "taken with the same one)")

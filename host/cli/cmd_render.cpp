@@ -51,6 +51,7 @@ struct RenderOptions {
   std::string megakernel_loop = "auto";
   std::string scene_loops = "auto";
   std::string cpu_vector_bits = "auto";
+  std::string sphere_reads = "auto";
   uint32_t paths_in_flight = 0;
   size_t local_size = 0;
   double launch_ms = 75;          // megakernel launch target, milliseconds; 0: one per pass
@@ -275,6 +276,7 @@ int run(const RenderOptions& o) {
   request.megakernel_loop = *parse_megakernel_loop(o.megakernel_loop);  // CLI11 checked the word
   request.scene_loops = *parse_scene_loops(o.scene_loops);
   request.cpu_vector_bits = *parse_cpu_vector_bits(o.cpu_vector_bits);
+  request.sphere_reads = *parse_sphere_reads(o.sphere_reads);
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
@@ -378,6 +380,11 @@ std::function<int()> add_render_command(CLI::App& app) {
                   "(16 float lanes; README \"Speed\")")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "256", "512"}));
+  cmd->add_option("--sphere-reads", o->sphere_reads,
+                  "How shading reads the hit sphere: auto (selects on CPUs whose compiler has no fast gathers, with the robust and double presets), "
+                  "indexed or selects (docs/performance.md, \"CPUs without fast gathers\")")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"auto", "indexed", "selects"}));
   cmd->add_option("--paths-in-flight", o->paths_in_flight, "Wavefront path slots (default: from the device)")
       ->check(CLI::Range(uint32_t(64), uint32_t(1) << 24));
   cmd->add_option("--local-size", o->local_size,

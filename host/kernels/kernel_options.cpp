@@ -113,6 +113,49 @@ std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device) {
   return device.vendor.find("AMD") != std::string::npos ? "znver3" : "x86-64";
 }
 
+std::string pocl_llvm_cpu(const DeviceInfo& device) {
+  if (!device.is_pocl_cpu()) return "";
+  const std::string marker = "-linux-gnu-";
+  const size_t at = device.device_version.find(marker);
+  if (at == std::string::npos) return "";
+  const size_t begin = at + marker.size();
+  const size_t end = device.device_version.find_first_of(" ,", begin);
+  return device.device_version.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+bool device_lacks_fast_gathers(const DeviceInfo& device) {
+  const std::string cpu = pocl_llvm_cpu(device);
+  if (cpu.empty() || device.device_version.find("x86_64") == std::string::npos) return false;
+  // LLVM 15's CPUs with the fast-gather tuning (X86.td: Skylake client and every later Intel
+  // core, and the AVX-512 ones).
+  static const char* const kFastGather[] = {"skylake", "cascadelake", "cooperlake", "cannonlake", "icelake",
+                                            "tigerlake", "rocketlake", "sapphirerapids", "alderlake",
+                                            "raptorlake", "meteorlake", "knl", "knm"};
+  for (const char* prefix : kFastGather)
+    if (cpu.rfind(prefix, 0) == 0) return false;
+  return true;
+}
+
+const char* sphere_reads_name(SphereReads reads) {
+  switch (reads) {
+    case SphereReads::Indexed: return "indexed";
+    case SphereReads::Selects: return "selects";
+    default: return "auto";
+  }
+}
+
+std::optional<SphereReads> parse_sphere_reads(const std::string& name) {
+  if (name == "auto") return SphereReads::Auto;
+  if (name == "indexed") return SphereReads::Indexed;
+  if (name == "selects") return SphereReads::Selects;
+  return std::nullopt;
+}
+
+bool sphere_reads_by_select_for(SphereReads reads, const DeviceInfo& device, Precision precision) {
+  if (reads == SphereReads::Auto) return precision != Precision::Fast && device_lacks_fast_gathers(device);
+  return reads == SphereReads::Selects;
+}
+
 const char* scene_loops_name(SceneLoops loops) {
   switch (loops) {
     case SceneLoops::Unrolled: return "unrolled";
@@ -197,6 +240,12 @@ KernelFeatures generic_features(Precision precision) {
   return f;
 }
 
+// Where the selects over the loop's spheres replace indexed reads: a specialised kernel (the
+// loop's count is fixed) whose spheres are all in the loop.
+static bool no_fast_gather_compiled(const KernelFeatures& features) {
+  return features.no_fast_gather && !features.generic && !features.spheres_in_bvh;
+}
+
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
@@ -227,6 +276,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
+  if (no_fast_gather_compiled(features)) o << " -DCLPT_NO_FAST_GATHER=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -315,6 +365,16 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                   (features.cpu_vector_bits == CpuVectorBits::Auto ? ": 256 bits on an AVX-512 CPU" : "") + ")"
             : "512 bits (--cpu-vector-bits 512: tuned as " + features.tune_cpu + ", kernels/cpu_tuning.h)")
     << "\n";
+  o << "  hit sphere reads: "
+    << (!features.no_fast_gather ? std::string("indexed")
+        : no_fast_gather_compiled(features)
+            ? std::string("selects over the loop's spheres, the lockstep state in local memory")
+            : std::string("indexed (selects asked for, but the kernel is generic or its spheres are in the hierarchy)"))
+    << " (--sphere-reads " << sphere_reads_name(features.sphere_reads)
+    << (features.sphere_reads == SphereReads::Auto
+            ? ": selects where the device's compiler has no fast gathers, but with the fast preset"
+            : "")
+    << ")\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

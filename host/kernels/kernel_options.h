@@ -85,6 +85,31 @@ bool device_takes_512_bit_vectors(const DeviceInfo& device);
 // Error(Usage) naming --cpu-vector-bits when 512 is asked of a device that does not take it.
 std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device);
 
+// The LLVM CPU PoCL compiles for ("haswell", "skylake-avx512", ...), read from the end of its
+// device version ("... HSTR: pthread-x86_64-pc-linux-gnu-haswell"); "" for other devices.
+std::string pocl_llvm_cpu(const DeviceInfo& device);
+// Whether the device's compiler is known to cost gathers as one scalar load per lane: PoCL's CPU
+// device for an x86 LLVM CPU without LLVM 15's fast-gather tuning (Haswell, Broadwell, AMD Zen
+// 1-3, generic x86-64; Skylake and later Intel cores and every AVX-512 CPU have it). There it
+// keeps the shading scalar unless the kernels avoid indexed reads (CLPT_NO_FAST_GATHER, maths.cl;
+// docs/performance.md, "CPUs without fast gathers"). False for every other device.
+bool device_lacks_fast_gathers(const DeviceInfo& device);
+
+// How the shading reads the hit sphere's fields (`--sphere-reads`).
+//   auto:     selects on devices that lack fast gathers (device_lacks_fast_gathers) with the robust
+//             and double presets, else indexed (measured on an AMD EPYC Zen 3, 2026-12-02: robust
+//             3.4-5.4x, double 0.8-3.0x, fast 0.8x, whose kernels vectorise only 4 wide with
+//             selects; docs/performance.md "CPUs without fast gathers")
+//   indexed:  one read per field at the hit's index (a gather across vectorised work-items)
+//   selects:  a select per loop sphere and field over reads that are the same for every
+//             work-item, and the lockstep state through local memory (CLPT_NO_FAST_GATHER)
+enum class SphereReads { Auto, Indexed, Selects };
+const char* sphere_reads_name(SphereReads reads);
+// "auto" | "indexed" | "selects"; nullopt otherwise.
+std::optional<SphereReads> parse_sphere_reads(const std::string& name);
+// Whether a kernel for this device reads the hit sphere by selects.
+bool sphere_reads_by_select_for(SphereReads reads, const DeviceInfo& device, Precision precision);
+
 // Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
 // of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
 // The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
@@ -125,6 +150,10 @@ struct KernelFeatures {
   bool unroll_scene_loops = true;  // false: CLPT_UNROLL_SCENE_LOOPS=0 (a specialised kernel only)
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;  // the request; resolved per device into:
   std::string tune_cpu;  // CLPT_TUNE_CPU when not empty (kernels/cpu_tuning.h): 512-bit vectors
+  SphereReads sphere_reads = SphereReads::Auto;  // the request; resolved per device into:
+  // The hit sphere read by selects (sphere_reads_by_select_for): CLPT_NO_FAST_GATHER=1 in a
+  // specialised kernel whose spheres are all in the loop.
+  bool no_fast_gather = false;
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

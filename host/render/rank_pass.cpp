@@ -23,7 +23,7 @@ std::string join(const std::vector<std::string>& parts, const char* separator) {
 }
 
 // The build options a kernel of this plan would have on any device: the per-device choices
-// (megakernel loop, scene loops, CPU vector width) set to one value.
+// (megakernel loop, scene loops, CPU vector width, hit sphere reads) set to one value.
 std::string device_independent_options(KernelFeatures features) {
   features.megakernel_loop = MegakernelLoop::Auto;
   features.lockstep_group = 0;
@@ -31,6 +31,8 @@ std::string device_independent_options(KernelFeatures features) {
   features.unroll_scene_loops = true;
   features.cpu_vector_bits = CpuVectorBits::Auto;
   features.tune_cpu.clear();
+  features.sphere_reads = SphereReads::Auto;
+  features.no_fast_gather = false;
   features.build_nonce = 0;
   return kernel_build_options(features);
 }

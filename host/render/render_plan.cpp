@@ -96,6 +96,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   features.megakernel_loop = request.megakernel_loop;
   features.scene_loops = request.scene_loops;
   features.cpu_vector_bits = request.cpu_vector_bits;
+  features.sphere_reads = request.sphere_reads;
 
   for (size_t i = 0; i < devices.size(); ++i) {
     DevicePlan d;
@@ -106,6 +107,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     d.features = features;
     d.features.unroll_scene_loops = scene_loops_unrolled_for(request.scene_loops, d.device);
     d.features.tune_cpu = tune_cpu_for(request.cpu_vector_bits, d.device);
+    d.features.no_fast_gather = sphere_reads_by_select_for(request.sphere_reads, d.device, request.precision);
     if (d.form == ExecutionForm::Megakernel) {
       d.entry_file = "megakernel.cl";
       d.features.lockstep_group =

@@ -36,6 +36,7 @@ struct RenderRequest {
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // --megakernel-loop
   SceneLoops scene_loops = SceneLoops::Auto;               // --scene-loops
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;     // --cpu-vector-bits
+  SphereReads sphere_reads = SphereReads::Auto;            // --sphere-reads
   uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
   bool use_kernel_cache = true;       // clpt's kernel binary cache (--no-cache turns it off)
   // Megakernel launches are sized to take about this long (watchdogs); <= 0: one per pass.

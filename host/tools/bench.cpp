@@ -56,6 +56,7 @@ RenderRequest cell_request(const Scene& scene, const BenchConfig& c, ExecutionFo
   request.generic_kernel = generic;
   request.local_size = local_size;
   request.cpu_vector_bits = c.cpu_vector_bits;
+  request.sphere_reads = c.sphere_reads;
   request.paths_in_flight = c.paths_in_flight;
   request.use_kernel_cache = false;
   return request;
@@ -97,6 +98,8 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.build_cached_s = pool.shares().front().build_seconds;
   row.local_size = planned.local_size;
   row.cpu_vector_bits = planned.features.tune_cpu.empty() ? "default" : "512";
+  row.sphere_reads = kernel_build_options(planned.features).find("CLPT_NO_FAST_GATHER=1") != std::string::npos
+                         ? "selects" : "indexed";
   if (form == ExecutionForm::Megakernel) row.loop = planned.features.lockstep_group ? "lockstep" : "path";
   row.paths_in_flight = planned.paths_in_flight;
 
@@ -323,7 +326,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
     nlohmann::json row = {{"key", r.key()}, {"scene", r.scene}, {"form", r.form}, {"loop", r.loop},
                           {"kernel", r.kernel}, {"precision", r.precision}, {"estimator", r.estimator},
                           {"device", r.device}, {"local_size", r.local_size}, {"cpu_vector_bits", r.cpu_vector_bits},
-                          {"paths_in_flight", r.paths_in_flight},
+                          {"sphere_reads", r.sphere_reads}, {"paths_in_flight", r.paths_in_flight},
                           {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
                           {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},

@@ -36,6 +36,7 @@ struct BenchConfig {
   Sampler sampler = Sampler::Jitter;           // one for the whole matrix (rows do not name it)
   // One for the whole matrix (--cpu-vector-bits); rows record the width they were built for.
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;
+  SphereReads sphere_reads = SphereReads::Auto;  // --sphere-reads, for the whole matrix
   // Who builds the hierarchy of each row's device scene (a plain bench only: the MPI scaling
   // renders as `clpt render` does, with clpt's own builder).
   std::vector<BvhBuilder> bvh_builders = {BvhBuilder::Clpt};
@@ -69,6 +70,7 @@ struct BenchRow {
   size_t local_size = 0;  // the work-group size as run; 0: the driver's choice
   // The kernels' CPU vector width as built: "512" (CLPT_TUNE_CPU), else "default".
   std::string cpu_vector_bits = "default";
+  std::string sphere_reads = "indexed";  // "selects" where the kernel read the hit sphere by selects
   uint32_t paths_in_flight = 0;
   double build_cold_s = 0, build_cached_s = 0;
   // The bounding volume hierarchy (none: nodes 0): what it holds, its host build time and the

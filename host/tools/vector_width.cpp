@@ -147,7 +147,8 @@ std::vector<std::string> vector_width_probe_arguments(const RenderRequest& reque
                                    "--form", execution_form_name(device.form),
                                    "--megakernel-loop", megakernel_loop_name(request.megakernel_loop),
                                    "--scene-loops", scene_loops_name(request.scene_loops),
-                                   "--cpu-vector-bits", cpu_vector_bits_name(request.cpu_vector_bits)};
+                                   "--cpu-vector-bits", cpu_vector_bits_name(request.cpu_vector_bits),
+                                   "--sphere-reads", sphere_reads_name(request.sphere_reads)};
   if (request.intersection) args.insert(args.end(), {"--intersection", intersection_name(*request.intersection)});
   if (!s.estimator.empty()) args.insert(args.end(), {"--estimator", s.estimator});
   if (s.rr_from >= 0) args.insert(args.end(), {"--rr-from", std::to_string(s.rr_from)});
