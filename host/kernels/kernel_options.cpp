@@ -240,9 +240,7 @@ KernelFeatures generic_features(Precision precision) {
   return f;
 }
 
-// Where the selects over the loop's spheres replace indexed reads: a specialised kernel (the
-// loop's count is fixed) whose spheres are all in the loop.
-static bool no_fast_gather_compiled(const KernelFeatures& features) {
+bool reads_spheres_by_select(const KernelFeatures& features) {
   return features.no_fast_gather && !features.generic && !features.spheres_in_bvh;
 }
 
@@ -276,7 +274,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
-  if (no_fast_gather_compiled(features)) o << " -DCLPT_NO_FAST_GATHER=1";
+  if (reads_spheres_by_select(features)) o << " -DCLPT_NO_FAST_GATHER=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -367,7 +365,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << "\n";
   o << "  hit sphere reads: "
     << (!features.no_fast_gather ? std::string("indexed")
-        : no_fast_gather_compiled(features)
+        : reads_spheres_by_select(features)
             ? std::string("selects over the loop's spheres, the lockstep state in local memory")
             : std::string("indexed (selects asked for, but the kernel is generic or its spheres are in the hierarchy)"))
     << " (--sphere-reads " << sphere_reads_name(features.sphere_reads)

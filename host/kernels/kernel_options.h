@@ -164,6 +164,11 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision = Prec
 // Every feature compiled in: the generic kernel.
 KernelFeatures generic_features(Precision precision = Precision::Robust);
 
+// Whether these features compile the hit sphere's reads as selects (CLPT_NO_FAST_GATHER): asked
+// for (no_fast_gather), in a specialised kernel (the loop's count is fixed) whose spheres are all
+// in the loop.
+bool reads_spheres_by_select(const KernelFeatures& features);
+
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);
 

@@ -98,8 +98,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.build_cached_s = pool.shares().front().build_seconds;
   row.local_size = planned.local_size;
   row.cpu_vector_bits = planned.features.tune_cpu.empty() ? "default" : "512";
-  row.sphere_reads = kernel_build_options(planned.features).find("CLPT_NO_FAST_GATHER=1") != std::string::npos
-                         ? "selects" : "indexed";
+  row.sphere_reads = reads_spheres_by_select(planned.features) ? "selects" : "indexed";
   if (form == ExecutionForm::Megakernel) row.loop = planned.features.lockstep_group ? "lockstep" : "path";
   row.paths_in_flight = planned.paths_in_flight;
 
