@@ -380,13 +380,23 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
   const int index = hit.sphere < 0 ? 0 : hit.sphere;
 #if CLPT_HAS_TRIANGLES
   const bool on_triangle = hit.triangle >= 0;
-  const SurfaceMaterial material = material_of(on_triangle ? &scene->triangle_shading[hit.triangle].material
-                                                           : &scene->spheres[index].material);
+  __global const GpuMaterial* stored =
+      on_triangle ? &scene->triangle_shading[hit.triangle].material : &scene->spheres[index].material;
+  const SurfaceMaterial material = material_of(stored);
 #else
+  __global const GpuMaterial* stored = &scene->spheres[index].material;
   const SurfaceMaterial material = sphere_material(scene->spheres, index);
 #endif
-  const uint kind = material.kind;
-  const bool emitter = !missed && kind == CLPT_MATERIAL_EMITTER;
+#if CLPT_NO_FAST_GATHER
+  /* Picked by selects: read for every path, as a masked load would be costed as a gather. */
+  const bool emitter = !missed && material.kind == CLPT_MATERIAL_EMITTER;
+#else
+  /* Behind the `&&` where gathers are fast. Read for every path (as above), it let LLVM's SLP
+   * vectoriser pack the loop-carried path state on an AVX-512 CPU, and the megakernel ran scalar
+   * there (measured on an AMD EPYC Zen 4: 6x slower; docs/performance.md, "CPUs without fast
+   * gathers"). */
+  const bool emitter = !missed && stored->kind == CLPT_MATERIAL_EMITTER;
+#endif
   bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
 
   const real t = missed ? (real)0 : hit.t;
