@@ -40,14 +40,21 @@ wf = [r for r in rows if r["form"] == "wavefront"][0]
 assert {"generate", "intersect", "shade", "film"} <= wf["stage_seconds"].keys(), wf
 for r in rows:
     v = r["vector_width"]
-    if pocl:  # measured: the widest loop's work-items, and the loops it counted
+    if pocl:  # measured: the kernel's width, the widest loop, and the loops it counted
         assert isinstance(v["widest"], int) and v["widest"] >= 1, v
         assert v["not_vectorised"] >= 0 and all(int(w) >= 2 and n >= 1 for w, n in v["loops"].items()), v
         assert v["widest"] == max([1] + [int(w) for w in v["loops"]]), v
+        # lanes: the width of most loops, or 1 where a blocker kept a work-item loop scalar
+        assert isinstance(v["blockers"], dict) and all(n >= 1 for n in v["blockers"].values()), v
+        if v["blockers"] or not v["loops"]:
+            assert v["lanes"] == 1, v
+        else:
+            most = max(v["loops"].values())
+            assert v["lanes"] == max(int(w) for w, n in v["loops"].items() if n == most), v
     else:
-        assert v["widest"] is None and v["why"] == "the driver does not report it", v
+        assert v["lanes"] is None and v["widest"] is None and v["why"] == "the driver does not report it", v
 if pocl:  # PoCL vectorises the lockstep loop across work-items (docs/performance.md)
-    assert lockstep["vector_width"]["widest"] > 1, lockstep
+    assert lockstep["vector_width"]["lanes"] > 1, lockstep
 # A baseline 1000 times faster than measured: every row must be a regression, however noisy
 # the machine (a timing ratio of 1000 cannot come from load).
 for r in rows:
@@ -61,7 +68,7 @@ PY
 python3 - "$work/same.json" <<'PY'
 import json, sys
 for r in json.load(open(sys.argv[1]))["rows"]:
-    assert r["vector_width"] == {"widest": None, "why": "not measured (--no-vector-width)"}, r
+    assert r["vector_width"] == {"lanes": None, "widest": None, "why": "not measured (--no-vector-width)"}, r
 PY
 if grep -q "vector width:" "$work/same.txt"; then echo "FAIL: --no-vector-width measured a vector width"; exit 1; fi
 if "$clpt" bench "${common[@]}" --no-vector-width --baseline "$work/faster.json" --tolerance 10 > "$work/slower.txt"; then

@@ -44,9 +44,33 @@ TEST(VectorWidth, CountsTheWorkGroupFunctionsLoopsOnOneLine) {
   const VectorWidthReport r = parse_vectoriser_remarks(text);
   ASSERT_TRUE(r.known) << r.why;
   EXPECT_EQ(r.widest, 16u);
+  EXPECT_EQ(r.lanes, 8u);  // most loops
   EXPECT_EQ(r.loops_by_width, (std::map<uint32_t, int>{{4, 1}, {8, 2}, {16, 1}}));
   EXPECT_EQ(r.not_vectorised, 3);
-  EXPECT_EQ(r.describe(), "16 work-items (vectorised loops: 1 at 16, 2 at 8, 1 at 4; 3 not)");
+  EXPECT_EQ(r.describe(), "8 work-items (vectorised loops: 1 at 16, 2 at 8, 1 at 4; 3 not)");
+}
+
+TEST(VectorWidth, ABlockedWorkItemLoopIsOneWorkItem) {
+  // As PoCL printed it for a megakernel whose shading SLP had packed (AMD EPYC Zen 4, 2026-12-02):
+  // the work-group functions' only vectorised loops were the kernel's own loop over a local array,
+  // and their work-item loops stopped at a vector-typed value. A blocker in the kernel as written
+  // (before its work-group functions) is not the work-item loops' and is left out.
+  const std::string blocked = remark("loop not vectorized: instruction return type cannot be vectorized");
+  const std::string call = remark("loop not vectorized: call instruction cannot be vectorized");
+  const std::string text = compiling_kernel("render_paths") + call + kScalar + vectorised(8) +
+                           compiling_work_group("render_paths") + blocked + kScalar + vectorised(8) + blocked +
+                           kScalar + vectorised(8) + call + remark("loop not vectorized") + "\n";
+  const VectorWidthReport r = parse_vectoriser_remarks(text);
+  ASSERT_TRUE(r.known) << r.why;
+  EXPECT_EQ(r.lanes, 1u);
+  EXPECT_EQ(r.widest, 8u);
+  EXPECT_EQ(r.loops_by_width, (std::map<uint32_t, int>{{8, 2}}));
+  EXPECT_EQ(r.not_vectorised, 3);
+  EXPECT_EQ(r.blockers, (std::map<std::string, int>{{"call instruction cannot be vectorized", 1},
+                                                    {"instruction return type cannot be vectorized", 2}}));
+  EXPECT_EQ(r.describe(),
+            "1 work-item (work-item loops kept scalar: 1 by call instruction cannot be vectorized, 2 by instruction "
+            "return type cannot be vectorized; vectorised loops: 2 at 8; 3 not)");
 }
 
 TEST(VectorWidth, WithoutWorkGroupMarksEveryRemarkCounts) {
@@ -55,6 +79,7 @@ TEST(VectorWidth, WithoutWorkGroupMarksEveryRemarkCounts) {
   const VectorWidthReport r = parse_vectoriser_remarks(text);
   ASSERT_TRUE(r.known) << r.why;
   EXPECT_EQ(r.widest, 8u);
+  EXPECT_EQ(r.lanes, 8u);  // a tie: the wider
   EXPECT_EQ(r.describe(), "8 work-items (vectorised loops: 1 at 8, 1 at 4; 1 not)");
 }
 
@@ -62,6 +87,7 @@ TEST(VectorWidth, OnlyScalarLoopsIsOneWorkItem) {
   const VectorWidthReport r = parse_vectoriser_remarks(compiling_work_group("k") + kScalar + kScalar + kCostModel);
   ASSERT_TRUE(r.known) << r.why;
   EXPECT_EQ(r.widest, 1u);
+  EXPECT_EQ(r.lanes, 1u);
   EXPECT_TRUE(r.loops_by_width.empty());
   EXPECT_EQ(r.not_vectorised, 3);
   EXPECT_EQ(r.describe(), "1 work-item (no loop vectorised; 3 not)");

@@ -195,19 +195,23 @@ BenchRow bench_row(const BenchConfig& c, const Scene& scene, const DeviceInfo& d
   return row;
 }
 
-// The table's "lanes" column: the widest vector width, "?" where unknown, "-" where not measured.
+// The table's "lanes" column: the kernel's vector width (VectorWidthReport::lanes), "?" where
+// unknown, "-" where not measured.
 std::string lanes_cell(const BenchRow& r) {
   if (!r.vector_width) return "-";
-  return r.vector_width->known ? std::to_string(r.vector_width->widest) : "?";
+  return r.vector_width->known ? std::to_string(r.vector_width->lanes) : "?";
 }
 
 nlohmann::json vector_width_json(const BenchRow& r) {
-  if (!r.vector_width) return {{"widest", nullptr}, {"why", "not measured (--no-vector-width)"}};
+  if (!r.vector_width) return {{"lanes", nullptr}, {"widest", nullptr}, {"why", "not measured (--no-vector-width)"}};
   const VectorWidthReport& v = *r.vector_width;
-  if (!v.known) return {{"widest", nullptr}, {"why", v.why}};
+  if (!v.known) return {{"lanes", nullptr}, {"widest", nullptr}, {"why", v.why}};
   nlohmann::json loops = nlohmann::json::object();
   for (const auto& [width, count] : v.loops_by_width) loops[std::to_string(width)] = count;
-  return {{"widest", v.widest}, {"loops", loops}, {"not_vectorised", v.not_vectorised}};
+  nlohmann::json blockers = nlohmann::json::object();
+  for (const auto& [reason, count] : v.blockers) blockers[reason] = count;
+  return {{"lanes", v.lanes}, {"widest", v.widest}, {"loops", loops}, {"not_vectorised", v.not_vectorised},
+          {"blockers", blockers}};
 }
 
 std::string format_rate(const Spread& s) {

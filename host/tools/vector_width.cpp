@@ -19,6 +19,10 @@ constexpr size_t kReasonChars = 200;
 
 constexpr const char* kVectorised = "vectorized loop (vectorization width: ";
 constexpr const char* kNotVectorised = "loop not vectorized";
+// Reasons (after "loop not vectorized: ") that keep a whole work-item loop scalar; the ones
+// tests/vectorised_cli.sh fails on.
+constexpr const char* kBlockers[] = {"instruction return type cannot be vectorized",
+                                     "call instruction cannot be vectorized", "loop contains a switch statement"};
 constexpr const char* kNotBeneficial = "the cost-model indicates that vectorization is not beneficial";
 // The inliner's remarks ("'f' inlined into 'g' ...", "'f' not inlined into 'g' ...") name the
 // function being compiled; PoCL's work-group functions are named _pocl_kernel_KERNEL_workgroup...
@@ -64,7 +68,13 @@ std::string child_message(const std::string& output) {
 std::string VectorWidthReport::describe() const {
   if (!known) return "unknown (" + why + ")";
   std::ostringstream o;
-  o << widest << (widest == 1 ? " work-item" : " work-items") << " (";
+  o << lanes << (lanes == 1 ? " work-item" : " work-items") << " (";
+  if (!blockers.empty()) {
+    o << "work-item loops kept scalar: ";
+    for (auto it = blockers.begin(); it != blockers.end(); ++it)
+      o << (it == blockers.begin() ? "" : ", ") << it->second << " by " << it->first;
+    o << "; ";
+  }
   if (loops_by_width.empty()) {
     o << "no loop vectorised";
   } else {
@@ -83,11 +93,12 @@ VectorWidthReport unknown_vector_width(const std::string& why) {
 }
 
 VectorWidthReport parse_vectoriser_remarks(const std::string& text) {
-  enum class Kind { Vectorised, Scalar, KernelSource, WorkGroupFunction };
+  enum class Kind { Vectorised, Scalar, Blocker, KernelSource, WorkGroupFunction };
   struct Event {
     size_t at;
     Kind kind;
     uint32_t width;
+    const char* blocker = nullptr;
   };
   std::vector<Event> events;
   const std::string vectorised = kVectorised;
@@ -102,6 +113,12 @@ VectorWidthReport parse_vectoriser_remarks(const std::string& text) {
   const std::string scalar = kNotVectorised;
   for (size_t at = text.find(scalar); at != std::string::npos; at = text.find(scalar, at + 1))
     if (at + scalar.size() >= text.size() || text[at + scalar.size()] != ':') events.push_back({at, Kind::Scalar, 0});
+  const std::string reason_prefix = scalar + ": ";
+  for (const char* blocker : kBlockers) {
+    const std::string needle = reason_prefix + blocker;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+      events.push_back({at, Kind::Blocker, 0, blocker});
+  }
   const std::string not_beneficial = kNotBeneficial;
   for (size_t at = text.find(not_beneficial); at != std::string::npos; at = text.find(not_beneficial, at + 1))
     events.push_back({at, Kind::Scalar, 0});
@@ -123,6 +140,8 @@ VectorWidthReport parse_vectoriser_remarks(const std::string& text) {
     } else if (counting) {
       if (e.kind == Kind::Vectorised)
         ++report.loops_by_width[e.width];
+      else if (e.kind == Kind::Blocker)
+        ++report.blockers[e.blocker];
       else
         ++report.not_vectorised;
     }
@@ -131,6 +150,11 @@ VectorWidthReport parse_vectoriser_remarks(const std::string& text) {
     return unknown_vector_width("the compiler printed no loop-vectoriser remarks");
   report.known = true;
   report.widest = report.loops_by_width.empty() ? 1 : report.loops_by_width.rbegin()->first;
+  report.lanes = 1;
+  int most = 0;
+  if (report.blockers.empty())
+    for (const auto& [width, loops] : report.loops_by_width)  // ascending: a tie goes to the wider
+      if (loops >= most) most = loops, report.lanes = width;
   return report;
 }
 

@@ -20,13 +20,24 @@ struct VectorWidthReport {
   // false: the width could not be measured; `why` says why and the figures below are zero.
   bool known = false;
   std::string why;
-  // Work-items per vector instruction in the program's widest vectorised loop; 1 when the
-  // compiler reported loops but vectorised none of them.
+  // Work-items per vector instruction of the kernel, the figure reported: the width most of the
+  // work-group functions' vectorised loops run at (the wider of a tie); 1 when the compiler
+  // vectorised none, or when a blocker (below) kept a work-item loop scalar. Not the widest loop:
+  // a loop of the kernel's own source inside a work-group function (the lockstep megakernel's
+  // reduction over a local array of uints) is vectorised at 8 while the double preset's work-item
+  // loops run at 4, or while a blocked shading runs one work-item at a time.
+  uint32_t lanes = 0;
+  // The widest vectorised loop (1 when none), as measured.
   uint32_t widest = 0;
   std::map<uint32_t, int> loops_by_width;  // vectorised loops (the kernels' barrier regions, ...) per width
   int not_vectorised = 0;                  // loops the vectoriser reported leaving scalar
+  // Loops of the work-group functions left scalar for a reason that stops a work-item loop as a
+  // whole (a vector-typed value, a call, a switch), per reason: the blockers of docs/design.md.
+  std::map<std::string, int> blockers;
 
-  // One line: "8 work-items (vectorised loops: 3 at 8, 2 at 4; 7 not)", or "unknown (WHY)".
+  // One line, lanes first: "8 work-items (vectorised loops: 3 at 8, 2 at 4; 7 not)", or with blockers
+  // "1 work-item (work-item loops kept scalar: 4 by instruction return type cannot be vectorized;
+  // vectorised loops: 3 at 8; 18 not)", or "unknown (WHY)".
   std::string describe() const;
 };
 
@@ -36,8 +47,9 @@ VectorWidthReport unknown_vector_width(const std::string& why);
 // Reads LLVM's loop-vectoriser remarks from PoCL's diagnostic text (often many remarks on one
 // line): each "vectorized loop (vectorization width: N" is one loop vectorised at width N; each
 // loop left scalar is one "loop not vectorized" remark that ends there (its reasons come in
-// remarks "loop not vectorized: WHY" of their own, not counted again) or one "the cost-model
-// indicates that vectorization is not beneficial". A loop reported as "already vectorized" is
+// remarks "loop not vectorized: WHY" of their own, not counted again; the WHYs that stop a
+// work-item loop as a whole are kept as blockers) or one "the cost-model indicates that
+// vectorization is not beneficial". A loop reported as "already vectorized" is
 // counted where it was vectorised. Only the work-group functions' loops count where the text
 // marks them: PoCL compiles each kernel first as written (its inliner's remarks name the kernel)
 // and then its work-group functions (they name '_pocl_kernel_...'), where the work-item loops
