@@ -336,6 +336,29 @@ TEST(OclgrindAdaptive, SlottedPassesInBothForms) {
   }
 }
 
+// The hit sphere read by selects (--sphere-reads selects, CLPT_NO_FAST_GATHER: what the lockstep
+// megakernel runs on CPUs without fast gathers, docs/performance.md) on the simulator: the selects
+// over the loop's spheres and the path state kept in local memory between segments, for each
+// estimator. Oclgrind is no such CPU, so `auto` never picks this path there, and the covering
+// variants above do not reach it. No finding, and the PoCL image of the same request (PoCL also
+// reads by selects): the bound of the specialised robust variants.
+TEST(OclgrindSphereReads, SelectsInTheLockstepMegakernel) {
+  REQUIRE_OCLGRIND();
+  for (const char* estimator : {"book", "nee"}) {
+    auto request_on = [estimator](const std::string& device) {
+      RenderRequest request = small_request("diffuse", kWidth, kHeight, kSpp, Sampler::Jitter, device);
+      request.scene.settings.estimator = estimator;
+      request.sphere_reads = SphereReads::Selects;
+      request.form = ExecutionForm::Megakernel;
+      request.megakernel_loop = MegakernelLoop::Lockstep;
+      request.launch_target_s = 0;  // one launch per pass (variant_request says why)
+      return request;
+    };
+    expect_clean_and_the_pocl_image(request_on, std::string("sphere reads by selects, ") + estimator,
+                                    uint64_t(kWidth) * kHeight * kSpp);
+  }
+}
+
 std::string variant_test_name(const ::testing::TestParamInfo<KernelVariant>& info) {
   std::string name = info.param.name();
   for (char& c : name)
