@@ -17,16 +17,27 @@
  * in an order k -> (a k + b) mod 16 with random odd a and random b per (pixel, group), so every
  * single sample is uniform over the pixel and any sample count is unbiased.
  * Sobol: the first pair of sampler dimension 0 as it is (sampler.cl): every 2^k samples are
- * stratified in the pixel's elementary intervals of area 2^-k. */
+ * stratified in the pixel's elementary intervals of area 2^-k.
+ * Sobol-grid: that pair's 4x4 stratum, at its centre: one of the grid's 16 positions. Each Sobol
+ * point is uniform over the pixel, so each position has probability 1/16 and any sample count
+ * converges to the grid's (the book's) image, which differs from the pixel's area average where an
+ * edge crosses the pixel (sharpest at the light's rim). Every aligned block of 16 samples is a
+ * (0,4,2)-net, one point per 4x4 stratum, so it visits each of the 16 positions exactly once:
+ * 16 samples are the grid's own (in another order), fewer are a well-spread subset of them. */
 CLPT_INLINE Float2 camera_subpixel(RngKey key, uint sampler, uint pixel, uint sample) {
   const uint k = sample & 15u;
   const Philox4 shuffle = philox4x32_10(philox4(pixel, sample >> 4, CLPT_DIM_STRATA, 0u), key.k0, key.k1);
   const Uniform4 u = sampler_uniform4(key, sampler, pixel, sample, 0u);
-  const bool grid = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_GRID;
-  const bool sobol = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_SOBOL;
-  const uint stratum = grid ? k : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
-  const real jx = grid ? 0.5f : u.u0;
-  const real jy = grid ? 0.5f : u.u1;
+  const uint in_use = CLPT_SAMPLER_IN_USE(sampler);
+  const bool grid = in_use == CLPT_SAMPLER_GRID;
+  const bool sobol = in_use == CLPT_SAMPLER_SOBOL;
+  const bool sobol_grid = in_use == CLPT_SAMPLER_SOBOL_GRID;
+  /* u0, u1 are multiples of 2^-24 below 1, so 4 u is exact and its floor at most 3. */
+  const uint sobol_stratum = (uint)floor((real)u.u0 * 4.0f) + 4u * (uint)floor((real)u.u1 * 4.0f);
+  const uint stratum = grid ? k : sobol_grid ? sobol_stratum : ((shuffle.x | 1u) * k + shuffle.y) & 15u;
+  const bool centred = grid || sobol_grid;
+  const real jx = centred ? 0.5f : u.u0;
+  const real jy = centred ? 0.5f : u.u1;
   const real sx = ((real)(stratum & 3u) + jx) * 0.25f;
   const real sy = ((real)(stratum >> 2) + jy) * 0.25f;
   return f2(sobol ? (real)u.u0 : sx, sobol ? (real)u.u1 : sy);

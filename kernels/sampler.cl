@@ -8,7 +8,8 @@
  *
  *  - jitter and grid: four independent Philox uniforms (rng.cl). The grid sampler differs only in
  *    the camera's sub-pixel position (camera.cl).
- *  - sobol: padded, shuffled, Owen-scrambled Sobol points. Each dimension is two 2D pairs, (u0,u1)
+ *  - sobol and sobol-grid: padded, shuffled, Owen-scrambled Sobol points (sobol-grid differs only
+ *    in the camera's sub-pixel position, camera.cl). Each dimension is two 2D pairs, (u0,u1)
  *    and (u2,u3); each pair is the base-2 (0,2)-sequence formed by the first two Sobol dimensions
  *    (the van der Corput radical inverse, and the dimension whose generator matrix is Pascal's
  *    triangle mod 2), read in an order shuffled per (key, pixel, dimension, pair) and then
@@ -112,7 +113,8 @@ CLPT_INLINE SobolPoint sobol_point(uint sample_reversed, uint shuffle_seed, uint
  * (they are not independent of the first pair's, but the independent shuffle already
  * decorrelates the two pairs). */
 CLPT_INLINE Uniform4 sampler_uniform4(RngKey key, uint sampler, uint pixel, uint sample, uint dimension) {
-  const bool sobol = CLPT_SAMPLER_IN_USE(sampler) == CLPT_SAMPLER_SOBOL;
+  const uint in_use = CLPT_SAMPLER_IN_USE(sampler);
+  const bool sobol = in_use == CLPT_SAMPLER_SOBOL || in_use == CLPT_SAMPLER_SOBOL_GRID;
   const Philox4 bits = philox4x32_10(
       philox4(pixel, sobol ? sample >> CLPT_SAMPLE_STREAM_BIT : sample, dimension, sobol ? 1u : 0u), key.k0, key.k1);
   const uint reversed = sobol_reverse_bits(sample & ((1u << CLPT_SAMPLE_STREAM_BIT) - 1u));

@@ -42,6 +42,7 @@ typedef struct GpuMaterial {
 #define CLPT_SAMPLER_JITTER 0u /* 4x4 strata, uniform inside each, strata order shuffled per 16 */
 #define CLPT_SAMPLER_GRID 1u   /* the book's 4x4 fixed sub-pixel centres */
 #define CLPT_SAMPLER_SOBOL 2u  /* padded, shuffled, Owen-scrambled Sobol points for every draw (sampler.cl) */
+#define CLPT_SAMPLER_SOBOL_GRID 3u /* the same points, the camera's moved to the centre of its 4x4 stratum (camera.cl) */
 
 /* One sphere and its material: 96 bytes.
  * The sphere is stored as a point s0 on its surface near the scene, the outward unit normal n0

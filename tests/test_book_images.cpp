@@ -4,7 +4,8 @@
 // estimator must converge to the book's image at the same path-length limit, so each variant
 // (the book's estimator, next-event estimation, either with Russian roulette; both estimators
 // with the Sobol sampler; next-event estimation with adaptive sampling, jitter and Sobol, at the
-// same total samples) is held to the same references.
+// same total samples; next-event estimation with Sobol points on the book's sub-pixel grid) is
+// held to the same references.
 //
 // References: tests/reference/gemspt_<scene>_160x120.exr, made by gemspt (outside this tree) at
 // 8192 spp; provenance in tests/reference/README.md. A missing reference fails the test.
@@ -49,6 +50,7 @@ constexpr Variant kVariants[] = {
     {"nee_sobol", "nee", -1, 128, Sampler::Sobol},
     {"nee_adaptive", "nee", -1, 128, Sampler::Jitter, true},
     {"nee_sobol_adaptive", "nee", -1, 128, Sampler::Sobol, true},
+    {"nee_sobol_grid", "nee", -1, 128, Sampler::SobolGrid},
 };
 constexpr int kScenes = 3;
 

@@ -103,6 +103,62 @@ TEST(SobolSampler, DrawsAreInTheUnitInterval) {
     }
 }
 
+// The camera's sub-pixel positions for samples sample_begin .. sample_begin + count - 1 of `pixel`.
+std::vector<cl_float2> subpixels(cl_uint sampler, cl_uint pixel, cl_uint sample_begin, size_t count) {
+  Kernel kernel(test_program("probe_stages.cl"), "probe_subpixel", test_device().where());
+  Buffer out(test_device(), count * sizeof(cl_float2), CL_MEM_WRITE_ONLY, "out");
+  kernel.set_arg(0, cl_uint(7));
+  kernel.set_arg(1, cl_uint(0));
+  kernel.set_arg(2, sampler);
+  kernel.set_arg(3, pixel);
+  kernel.set_arg(4, sample_begin);
+  kernel.set_arg(5, out);
+  test_device().launch(kernel, count, 0, "probe_subpixel");
+  return download<cl_float2>(out, count);
+}
+
+// The grid sampler's 16 positions (the centres of 4x4 strata), as indices 0..15, or -1 for any
+// other position.
+int grid_position(const cl_float2& p) {
+  const float cx = p.s[0] * 4.0f - 0.5f, cy = p.s[1] * 4.0f - 0.5f;
+  const int ix = int(std::lround(cx)), iy = int(std::lround(cy));
+  return cx == float(ix) && cy == float(iy) && ix >= 0 && ix < 4 && iy >= 0 && iy < 4 ? ix + 4 * iy : -1;
+}
+
+// sobol-grid puts every camera sample on one of the grid's 16 positions, and every aligned block
+// of 16 samples on each of them once: it converges to the grid's image, and 16 samples of it are
+// the grid's own. Counts below 16 are spread (any 4 aligned samples in 4 different rows and
+// columns of the 4x4 grid). Plain Sobol positions are not on the grid.
+TEST(SobolGridSampler, VisitsEachGridPositionOncePerSixteenSamples) {
+  for (cl_uint pixel : {0u, 777u, 307199u}) {
+    const auto p = subpixels(CLPT_SAMPLER_SOBOL_GRID, pixel, 0, 64);
+    for (size_t block = 0; block < 4; ++block) {
+      std::set<int> seen;
+      for (size_t i = 16 * block; i < 16 * block + 16; ++i) {
+        const int g = grid_position(p[i]);
+        ASSERT_GE(g, 0) << "pixel " << pixel << " sample " << i << " at (" << p[i].s[0] << ", " << p[i].s[1] << ")";
+        seen.insert(g);
+      }
+      EXPECT_EQ(seen.size(), 16u) << "pixel " << pixel << " samples " << 16 * block << "..";
+    }
+    for (size_t quad = 0; quad < 16; ++quad) {
+      std::set<int> rows, columns;
+      for (size_t i = 4 * quad; i < 4 * quad + 4; ++i) {
+        columns.insert(grid_position(p[i]) % 4);
+        rows.insert(grid_position(p[i]) / 4);
+      }
+      EXPECT_EQ(rows.size() + columns.size(), 8u) << "pixel " << pixel << " samples " << 4 * quad << "..";
+    }
+    // The same Sobol point, not snapped: off the grid (a point of the 2^-24 lattice lands on a
+    // centre with probability 2^-22 per coordinate).
+    const auto plain = subpixels(CLPT_SAMPLER_SOBOL, pixel, 0, 16);
+    for (size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_EQ(grid_position(plain[i]), -1) << "pixel " << pixel << " sample " << i;
+      EXPECT_EQ(int(plain[i].s[0] * 4) + 4 * int(plain[i].s[1] * 4), grid_position(p[i])) << "the stratum of its own point";
+    }
+  }
+}
+
 // The jitter and grid samplers draw Philox4x32-10 at counter (pixel, sample, dimension, 0), top 24
 // bits of each word: the numbers every jitter image was made with before the Sobol sampler.
 TEST(JitterSampler, DrawsThePhiloxNumbers) {

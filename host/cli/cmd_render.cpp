@@ -339,7 +339,8 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--sampler", o->sampler,
-                  "jitter (stratified), grid (the book's 4x4 centres) or sobol (Owen-scrambled Sobol points)")
+                  "jitter (stratified), grid (the book's 4x4 centres), sobol (Owen-scrambled Sobol points) or "
+                  "sobol-grid (Sobol points, the camera's at the grid's centres: converges to grid's image at any spp)")
       ->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--precision", o->precision,
                   "fast (float, fast maths), robust (float, IEEE; default) or double (fp64)")

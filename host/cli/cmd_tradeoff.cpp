@@ -127,10 +127,12 @@ void warn_about_mismatches(const LoadedReference& ref, const Scene& scene, const
     std::fprintf(stderr, "clpt: warning: --reference %s was rendered from another scene file (clpt:scene_hash %s, "
                          "%s has %s): its bias figures compare different images\n",
                  ref.info.path.c_str(), ref.file.scene_hash.c_str(), scene.file.c_str(), scene.file_hash.c_str());
-  // Jitter and Sobol average the pixel's box; grid takes its 16 fixed points.
-  auto filter = [](const std::string& sampler) { return sampler == "grid" ? "grid" : "box"; };
+  auto filter = [](const std::string& sampler) {
+    const std::optional<Sampler> known = sampler_from_name(sampler);
+    return std::string(known ? pixel_filter_name(*known) : "unknown");
+  };
   for (const std::string& sampler : samplers)
-    if (!ref.file.sampler.empty() && std::string(filter(ref.file.sampler)) != filter(sampler))
+    if (!ref.file.sampler.empty() && filter(ref.file.sampler) != filter(sampler))
       std::fprintf(stderr, "clpt: warning: --reference %s used the %s sampler but renders use %s: the two "
                            "converge to different pixel filters, which shows as bias (set --sampler)\n",
                    ref.info.path.c_str(), ref.file.sampler.c_str(), sampler.c_str());

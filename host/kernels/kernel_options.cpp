@@ -300,6 +300,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                          : std::string(sampler_name(features.sampler)) +
                                (features.sampler == Sampler::Grid ? " (fixed sub-pixel positions: no camera draw compiled)"
                                 : features.sampler == Sampler::Sobol ? " (Sobol points compiled)"
+                                : features.sampler == Sampler::SobolGrid ? " (Sobol points compiled; camera samples at the grid's 16 positions)"
                                                                      : " (Philox draws only; no Sobol points compiled)"))
     << "\n";
   o << "  Russian roulette: "

@@ -60,7 +60,7 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.seed_lo = static_cast<clpt_u32>(s.seed & 0xffffffffu);
   p.seed_hi = static_cast<clpt_u32>(s.seed >> 32);
   static_assert(uint32_t(Sampler::Jitter) == CLPT_SAMPLER_JITTER && uint32_t(Sampler::Grid) == CLPT_SAMPLER_GRID &&
-                    uint32_t(Sampler::Sobol) == CLPT_SAMPLER_SOBOL,
+                    uint32_t(Sampler::Sobol) == CLPT_SAMPLER_SOBOL && uint32_t(Sampler::SobolGrid) == CLPT_SAMPLER_SOBOL_GRID,
                 "Sampler's values are the kernels' CLPT_SAMPLER_*");
   p.sampler = static_cast<clpt_u32>(s.sampler);
   p.ray_epsilon = ds.ray_epsilon;

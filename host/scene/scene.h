@@ -77,8 +77,12 @@ struct Camera {
 };
 
 // Values equal the kernels' CLPT_SAMPLER_* (types.h) and are stored in checkpoints.
-enum class Sampler : uint32_t { Jitter = 0, Grid = 1, Sobol = 2 };
+enum class Sampler : uint32_t { Jitter = 0, Grid = 1, Sobol = 2, SobolGrid = 3 };
 const char* sampler_name(Sampler sampler);
+// The image a sampler converges to: "grid", the mean over the book's 16 sub-pixel positions
+// (grid, sobol-grid), or "box", the pixel's area average (jitter, sobol). The two differ where an
+// edge crosses a pixel.
+const char* pixel_filter_name(Sampler sampler);
 // Every sampler's name, in enum order (the scene key's and the command lines' accepted words).
 std::vector<std::string> sampler_names();
 // The sampler called `name`, or nullopt.

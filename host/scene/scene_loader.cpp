@@ -56,12 +56,18 @@ const char* sampler_name(Sampler sampler) {
       return "grid";
     case Sampler::Sobol:
       return "sobol";
+    case Sampler::SobolGrid:
+      return "sobol-grid";
   }
   return "unknown";
 }
 
+const char* pixel_filter_name(Sampler sampler) {
+  return sampler == Sampler::Grid || sampler == Sampler::SobolGrid ? "grid" : "box";
+}
+
 namespace {
-constexpr Sampler kSamplers[] = {Sampler::Jitter, Sampler::Grid, Sampler::Sobol};
+constexpr Sampler kSamplers[] = {Sampler::Jitter, Sampler::Grid, Sampler::Sobol, Sampler::SobolGrid};
 }  // namespace
 
 std::vector<std::string> sampler_names() {

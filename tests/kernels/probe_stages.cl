@@ -31,6 +31,16 @@ __kernel void probe_sampler(uint k0, uint k1, uint sampler, uint pixel, uint dim
   out[i] = (float4)(u.u0, u.u1, u.u2, u.u3);
 }
 
+/* The camera's position inside the pixel for samples sample_begin + i of `pixel` (camera.cl). */
+__kernel void probe_subpixel(uint k0, uint k1, uint sampler, uint pixel, uint sample_begin, __global float2* out) {
+  const uint i = (uint)get_global_id(0);
+  RngKey key;
+  key.k0 = k0;
+  key.k1 = k1;
+  const Float2 s = camera_subpixel(key, sampler, pixel, sample_begin + i);
+  out[i] = (float2)((float)s.x, (float)s.y);
+}
+
 /* Closest hit of ray i (origin with the sphere to skip in .w, unit direction) against spheres. */
 __kernel void probe_intersect(__global const GpuSphere* spheres, uint count,
                               __global const float4* rays, float t_min, __global float2* out) {
