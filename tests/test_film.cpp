@@ -177,13 +177,15 @@ TEST(PassSchedule, TargetErrorStopsOnlyAtACheckPointWithEqualHalves) {
 // and draws the same sample indices: half 0 from 0, half 1 from 2^31.
 TEST(PassSchedule, HalvesAtTheEndDependOnTheSampleCountAlone) {
   std::mt19937 rng(3);
+  for (bool power_of_two_halves : {false, true})
   for (uint32_t granularity : {1u, 16u})
-    for (uint64_t spp : {16u, 48u, 77u, 1000u}) {
+    for (uint64_t spp : {6u, 16u, 48u, 77u, 1000u}) {
       if (spp % granularity) continue;
       for (int trial = 0; trial < 20; ++trial) {
         PassRequest request;
         request.target_spp = spp;
         request.granularity = granularity;
+        request.power_of_two_halves = power_of_two_halves;
         PassMeasurements measured;
         PassScheduleState state;
         Film film(1, 1);
@@ -192,15 +194,27 @@ TEST(PassSchedule, HalvesAtTheEndDependOnTheSampleCountAlone) {
           const NextPass next = plan_next_pass(film, request, measured, state);
           if (next.stop != StopReason::None) break;
           EXPECT_EQ(next.sample_begin, (uint64_t(next.half) << 31) + film.half_samples_per_pixel(next.half));
-          film.add_pass({pass_of(std::vector<float>(next.samples, 1.0f))}, 0, next.samples);
+          film.add_pass({pass_of(std::vector<float>(next.samples, 1.0f))}, 0, next.samples, nullptr, next.half);
           ++measured.passes;
         }
-        const uint64_t half0 = (spp + 2 * granularity - 1) / (2 * granularity) * granularity;
+        const uint64_t half0 = half0_end(spp, granularity, power_of_two_halves);
         EXPECT_EQ(film.samples_per_pixel(), spp);
         EXPECT_EQ(film.half_samples_per_pixel(0), half0) << spp << " spp, granularity " << granularity;
         EXPECT_EQ(film.half_samples_per_pixel(1), spp - half0);
       }
     }
+}
+
+TEST(PassSchedule, HalfZeroEndsAtItsShareOrThePowerOfTwoAboveIt) {
+  // Equal shares, rounded up to the granularity.
+  EXPECT_EQ(half0_end(6, 1, false), 3u);
+  EXPECT_EQ(half0_end(7, 1, false), 4u);
+  EXPECT_EQ(half0_end(1, 1, false), 1u);
+  EXPECT_EQ(half0_end(48, 16, false), 32u);
+  // Sobol nets: the smallest power of two at or above the share, at most the whole render.
+  const std::pair<uint64_t, uint64_t> pow2[] = {{1, 1}, {2, 1}, {3, 2}, {5, 4}, {6, 4}, {7, 4}, {8, 4},
+                                                {9, 8}, {12, 8}, {17, 16}, {1000, 512}};
+  for (const auto& [spp, half0] : pow2) EXPECT_EQ(half0_end(spp, 1, true), half0) << spp << " spp";
 }
 
 TEST(PassSchedule, SampleCountAndTimeLimitStopTheRender) {

@@ -67,8 +67,9 @@ class Film {
   // whole passes added to half h; for half 1 the mean over pixels, rounded down, of
   // half1_samples() (every pixel's own count, NaN/Inf samples included: its next sample index
   // is 2^31 + that count). Half 1's samples have indices from 2^31 (pass_schedule.h).
-  // next_half(): the half the next pass goes to (fewer samples; 0 on a tie), fixed by the film's
-  // own state, so every device and every resumed render agrees on it.
+  // next_half(): the half with fewer samples (0 on a tie), fixed by the film's own state, so every
+  // device and every resumed render agrees on it; the pass schedule sends a pass there unless
+  // that half is full (pass_schedule.h, half0_end).
   uint64_t half_samples_per_pixel(int half) const { return half_spp_[half & 1]; }
   int next_half() const { return half_spp_[1] < half_spp_[0] ? 1 : 0; }
   const std::vector<double>& half1_sums() const { return half1_sum_; }

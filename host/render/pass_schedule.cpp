@@ -15,6 +15,15 @@ uint64_t round_up(uint64_t n, uint64_t g) { return (n + g - 1) / g * g; }
 
 }  // namespace
 
+uint64_t half0_end(uint64_t spp, uint32_t granularity, bool power_of_two_halves) {
+  const uint64_t g = std::max<uint32_t>(granularity, 1);
+  const uint64_t share = round_up((spp + 1) / 2, g);
+  if (!power_of_two_halves) return share;
+  uint64_t power = 1;
+  while (power < share) power *= 2;
+  return std::min(round_up(power, g), spp);
+}
+
 uint64_t check_ladder_at_or_above(uint64_t spp, uint32_t granularity) {
   const uint64_t g = std::max<uint32_t>(granularity, 1);
   uint64_t point = 2 * round_up(std::max<uint64_t>(8, g), g);
@@ -42,7 +51,8 @@ namespace {
 // Adaptive mode's passes (adaptive_sampling.h), sized by the image alone: below the ladder's first
 // point, uniform passes fill each half to half of it (or to the render's end); in a round, half 1's
 // slots, then half 0's uniform passes.
-void plan_adaptive_pass(const Film& film, uint64_t stop_spp, uint32_t g, uint32_t device_limit, NextPass& next) {
+void plan_adaptive_pass(const Film& film, uint64_t stop_spp, uint32_t g, bool power_of_two_halves, uint32_t device_limit,
+                        NextPass& next) {
   const uint64_t pixels = std::max<uint64_t>(film.pixel_count(), 1);
   const uint64_t uniform_spp = std::min<uint64_t>(
       round_up(std::max<uint64_t>(1, (kAdaptivePassSamples + pixels - 1) / pixels), g), std::max(g, device_limit / g * g));
@@ -65,7 +75,7 @@ void plan_adaptive_pass(const Film& film, uint64_t stop_spp, uint32_t g, uint32_
     half_end[1] = round->half1_end;
   } else {
     const uint64_t first = check_ladder_at_or_above(0, g);
-    half_end[0] = stop_spp < first ? round_up((stop_spp + 1) / 2, g) : first / 2;
+    half_end[0] = stop_spp < first ? half0_end(stop_spp, g, power_of_two_halves) : first / 2;
     half_end[1] = stop_spp < first ? stop_spp - half_end[0] : first / 2;
   }
   next.half = half_spp[1] < half_end[1] && half_spp[1] < half_spp[0] ? 1 : 0;
@@ -123,7 +133,7 @@ NextPass plan_next_pass(const Film& film, const ErrorEstimate& estimate, const P
 
   const uint32_t device_limit = measured.max_samples_per_pass ? measured.max_samples_per_pass : kMaxSamplesPerPass;
   if (request.adaptive) {
-    plan_adaptive_pass(film, stop_spp, g, device_limit, next);
+    plan_adaptive_pass(film, stop_spp, g, request.power_of_two_halves, device_limit, next);
     return next;
   }
 
@@ -131,12 +141,19 @@ NextPass plan_next_pass(const Film& film, const ErrorEstimate& estimate, const P
   double pass_s = request.pass_target_s;
   if (request.time_limit_s > 0) pass_s = std::min(pass_s, std::max(0.0, request.time_limit_s - measured.elapsed_s));
   uint64_t n = next_pass_samples(spp, stop_spp, measured.samples_per_pixel_per_s, pass_s, g);
+  // Each half fills up to its end, so that a render of S samples ends with halves of half0_end(S)
+  // and the rest whatever the pass sizes were: the samples drawn, and so the image, depend on S
+  // alone. The pass goes to the smaller half (half 0 on a tie) unless that one is full. (A
+  // resumed render whose halves were split otherwise may pass an end; it still stops at S.)
+  const uint64_t end0 = half0_end(stop_spp, g, request.power_of_two_halves && !target_mode);
+  const uint64_t half_end[2] = {end0, stop_spp - end0};
+  const bool half0_open = half_spp[0] < half_end[0];
+  next.half = half0_open && (half_spp[0] <= half_spp[1] || half_spp[1] >= half_end[1]) ? 0 : 1;
+  next.sample_begin = static_cast<uint32_t>((uint64_t(next.half) << CLPT_SAMPLE_STREAM_BIT) + half_spp[next.half]);
+  if (half_spp[next.half] < half_end[next.half]) n = std::min(n, half_end[next.half] - half_spp[next.half]);
   // The smaller half only catches up: at equal halves the estimate is exact (error_estimate.h).
-  if (half_spp[0] != half_spp[1]) n = std::min(n, std::max(half_spp[0], half_spp[1]) - half_spp[next.half]);
-  // At equal halves, half 0 takes at most its share (rounded up to the granularity) of what is
-  // left, so a render of S samples ends with halves of g ceil(S / 2g) and the rest whatever the
-  // pass sizes were: the samples drawn, and so the image, depend on S alone.
-  else n = std::min(n, round_up((stop_spp - spp + 1) / 2, g));
+  const uint64_t other = half_spp[next.half ^ 1];
+  if (half_spp[next.half] < other) n = std::min(n, other - half_spp[next.half]);
   // Target error: each half reaches half the next check point.
   if (target_mode && state.next_check_spp > spp && state.next_check_spp / 2 > half_spp[next.half])
     n = std::min(n, state.next_check_spp / 2 - half_spp[next.half]);

@@ -7,9 +7,9 @@
 // pixel on a fixed ladder (check_ladder_at_or_above) at which both half-films hold equal samples.
 // Sample indices: half 0 draws samples 0, 1, 2, ... of each pixel and half 1 samples 2^31,
 // 2^31 + 1, ... (kernels/types.h, CLPT_SAMPLE_STREAM_BIT), so the halves are independent for every
-// sampler, and a render of S samples ends with halves of g ceil(S / 2g) and S minus that samples
-// (g: the granularity) whatever its pass sizes were: the same seed and S give the same image on
-// any devices, split and resumed anyhow.
+// sampler, and a render of S samples ends with halves of half0_end(S) and S minus that samples
+// whatever its pass sizes were: the same seed and S give the same image on any devices, split and
+// resumed anyhow.
 //
 // Which check points are visited depends only on the estimates at earlier check points, and the
 // estimates depend only on the samples, which the counter-based RNG fixes by (seed, pixel,
@@ -31,6 +31,11 @@ struct PassRequest {
   double time_limit_s = 0;    // 0: none
   double target_error = 0;    // relative RMSE (error_estimate.h) at which to stop; 0: none
   uint32_t granularity = 1;   // samples per pass are a multiple of this (sampler period)
+  // Sobol samplers: without a target error, a render of S samples gives half 0 the smallest power
+  // of two at or above S / 2 and half 1 the rest (half0_end), not two equal halves, because their
+  // points are stratified in power-of-two blocks: 6 spp as 4 + 2 had 18% less squared error than
+  // as 3 + 3 (docs/sampler.md, "Half-films").
+  bool power_of_two_halves = false;
   double pass_target_s = 0.5; // wall time per pass, from the measured rate
   bool adaptive = false;      // adaptive sampling (adaptive_sampling.h): rounds, and passes sized by the image alone
 };
@@ -64,7 +69,7 @@ struct NextPass {
   // 2^CLPT_SAMPLE_STREAM_BIT for half 1 (kernels/types.h: an independent Sobol randomisation).
   uint32_t sample_begin = 0;
   uint32_t samples = 0;                // samples per pixel (per slot, adaptive) of the pass
-  int half = 0;                        // the half-film it goes to (film.next_half(); 1 when adaptive)
+  int half = 0;                        // the half-film it goes to (the smaller unless full; 1 when adaptive)
   // An adaptive pass: slots [slot_begin, slot_begin + slot_count) of its round's table
   // (adaptive_sampling.h), `samples` (the granularity) each; sample_begin is then unused.
   bool adaptive = false;
@@ -75,6 +80,11 @@ struct NextPass {
   // falling as 1/sqrt(spp)); 0 when unknown.
   uint64_t predicted_spp = 0;
 };
+
+// Where half 0 ends in a render of `spp` samples per pixel without a target error: granularity g
+// times ceil(spp / 2g), or with power_of_two_halves the smallest power of two at or above that
+// (rounded up to g, at most spp). Half 1 ends at spp minus it.
+uint64_t half0_end(uint64_t spp, uint32_t granularity, bool power_of_two_halves);
 
 // The sample count at which `request` stops: its target_spp, or kMaxSpp when it has none.
 uint64_t stop_spp(const PassRequest& request);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "render/megakernel_renderer.h"
+#include "render/pass_schedule.h"
 #include "render/wavefront_renderer.h"
 #include "util/error.h"
 
@@ -85,6 +86,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   plan.time_limit_s = request.time_limit_s;
   plan.target_error = request.target_error;
   plan.sampler_granularity = s.sampler == Sampler::Grid ? 16u : 1u;
+  plan.power_of_two_halves = s.sampler == Sampler::Sobol || s.sampler == Sampler::SobolGrid;
   plan.adaptive = request.adaptive;
   plan.precision = request.precision;
   plan.use_kernel_cache = request.use_kernel_cache;
@@ -138,7 +140,13 @@ std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>&
                         "passes sized by the image alone)"
                       : std::string())
     << ", passes in multiples of " << plan.sampler_granularity << " sample(s) per pixel"
-    << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "") << ", kernel cache "
+    << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "")
+    << (plan.power_of_two_halves && plan.target_spp > 0 && plan.target_error == 0
+            ? ", half-films of " + std::to_string(half0_end(plan.target_spp, plan.sampler_granularity, true)) + " and " +
+                  std::to_string(plan.target_spp - half0_end(plan.target_spp, plan.sampler_granularity, true)) +
+                  " spp (a power of two first: Sobol nets)"
+            : std::string())
+    << ", kernel cache "
     << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";
   for (const DevicePlan& d : plan.devices) {
     o << "device " << d.position << ": " << d.device.label() << "\n";

@@ -44,6 +44,7 @@ struct RenderPlan {
   double time_limit_s = 0;       // 0: none
   double target_error = 0;       // stop at this estimated relative RMSE (render/error_estimate.h); 0: none
   uint32_t sampler_granularity = 1;  // samples per pass are a multiple of this (grid: 16)
+  bool power_of_two_halves = false;  // Sobol samplers' half-film split (render/pass_schedule.h)
   bool adaptive = false;             // adaptive sampling (render/adaptive_sampling.h)
   Precision precision = Precision::Robust;
   bool use_kernel_cache = true;

@@ -16,6 +16,7 @@ PassLoopOptions pass_loop_options(const RenderPlan& plan, const RenderRequest& r
   o.request.time_limit_s = plan.time_limit_s;
   o.request.target_error = plan.target_error;
   o.request.granularity = plan.sampler_granularity;
+  o.request.power_of_two_halves = plan.power_of_two_halves;
   o.request.adaptive = plan.adaptive;
   o.interrupt = request.interrupt;
   o.checkpoint = request.checkpoint;
