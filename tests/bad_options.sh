@@ -38,6 +38,7 @@ expect 2 "--width" -- render "$scene" --width 0 -o out.exr
 expect 2 "--height" -- render "$scene" --height 99999 -o out.exr
 expect 2 "--max-bounces" -- render "$scene" --max-bounces 5000 -o out.exr
 expect 2 "--sampler" -- render "$scene" --sampler halton -o out.exr
+expect 2 "--exr-compression" -- render "$scene" --exr-compression lzw -o out.exr
 expect 2 "--time" -- render "$scene" --time -1 -o out.exr
 expect 2 "--spp 10: the grid sampler needs a multiple of 16" -- render "$scene" --sampler grid --spp 10 -o out.exr
 expect 2 "--device 'nosuchdevice': no such device" -- render "$scene" --device nosuchdevice --sampler jitter --spp 1 -o out.exr

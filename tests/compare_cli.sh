@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `clpt compare` end to end: two seeds of a small render pass, the same seed twice passes
-# --same-seed (one of the two written with OpenImageIO's module hidden), --json writes valid JSON,
+# --same-seed (one of the two written with OpenImageIO's module hidden), every --exr-compression
+# writes the same pixels, --json writes valid JSON,
 # and an EXR without variance channels is a usage error (exit 2) whose message names the file and
 # the variance channel.
 #   compare_cli.sh CLPT SOURCE_DIR WORK_DIR
@@ -20,6 +21,17 @@ render 2 b.exr
 # module hidden it still succeeds, and OpenImageIO reads both files back below.
 CLPT_IMAGE_IO_MODULE=/nonexistent/libclpt_image_io.so render 1 a_again.exr
 iinfo a_again.png >/dev/null || fail "OpenImageIO cannot read the PNG clpt wrote"
+# --exr-compression: the EXR says which it was written with, and every compression holds the same
+# values (all are lossless): OpenImageIO finds no pixel differing from the zip file's.
+for compression in none rle piz; do
+  "$clpt" render "$src/scenes/diffuse.toml" --width 64 --height 48 --spp 64 --sampler jitter --seed 1 -q \
+    --exr-compression $compression -o a_$compression.exr || fail "render --exr-compression $compression exited $?"
+  iinfo -v a_$compression.exr | grep -q "compression: \"$compression\"" ||
+    fail "a_$compression.exr: $(iinfo -v a_$compression.exr | grep compression)"
+  oiiotool a.exr a_$compression.exr --diff --fail 0 --failpercent 0 >diff.txt ||
+    fail "a_$compression.exr differs from the zip render: $(cat diff.txt)"
+done
+iinfo -v a.exr | grep -q 'compression: "zip"' || fail "a.exr (the default) is not zip: $(iinfo -v a.exr | grep compression)"
 
 # expect CODE ARGS...: runs `clpt compare ARGS`, keeps stdout in out.txt and stderr in err.txt.
 expect() {

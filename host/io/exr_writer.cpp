@@ -26,6 +26,11 @@ bool compression_from_name(const std::string& name, Imf::Compression& out) {
 
 }  // namespace
 
+const std::vector<std::string>& exr_compression_names() {
+  static const std::vector<std::string> kLossless = {"zip", "zips", "piz", "rle", "none"};
+  return kLossless;
+}
+
 std::string write_exr(const std::string& path, const ImageToWrite& image) {
   if (image.uint8) return "clpt's EXR writer takes float channels only";
   if (image.width <= 0 || image.height <= 0 || image.channels.empty() || !image.pixels)

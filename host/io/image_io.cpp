@@ -119,8 +119,8 @@ std::string preview_path_for(const std::string& exr_path) {
   return std::filesystem::path(exr_path).replace_extension(".png").string();
 }
 
-std::string write_render_outputs(const std::string& exr_path, const Film& film,
-                                 const ImageMetadata& metadata) {
+std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
+                                 const std::string& exr_compression) {
   const int w = film.width(), h = film.height();
   const std::vector<float> mean = film.mean_rgb();
   const std::vector<float> variance = film.variance_rgb();
@@ -136,7 +136,7 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film,
   exr.channels.assign(std::begin(kMeanChannels), std::end(kMeanChannels));
   exr.channels.insert(exr.channels.end(), std::begin(kVarianceChannels), std::end(kVarianceChannels));
   exr.pixels = pixels.data();
-  exr.compression = "zip";
+  exr.compression = exr_compression;
   exr.metadata = metadata;
 
   const std::string png_path = preview_path_for(exr_path);

@@ -20,10 +20,11 @@
 namespace clpt {
 
 // Writes the EXR at `exr_path` (channels and metadata as io/render_file.h lays them down; call
-// write_render_file there) and the PNG preview with the same stem (the two at once). Returns the
-// PNG path. Throws Error(OutputError) naming the file.
-std::string write_render_outputs(const std::string& exr_path, const Film& film,
-                                 const ImageMetadata& metadata);
+// write_render_file there) and the PNG preview with the same stem (the two at once), the EXR with
+// `exr_compression` (io/exr_writer.h, exr_compression_names). Returns the PNG path. Throws
+// Error(OutputError) naming the file.
+std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
+                                 const std::string& exr_compression = "zip");
 
 // Writes an 8-bit RGB PNG (or any format the extension names, through OpenImageIO), atomically.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);

@@ -161,8 +161,9 @@ RenderFile read_render_file(const std::string& path, const std::string& what_giv
   return out;
 }
 
-std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info) {
-  return write_render_outputs(exr_path, film, render_metadata(info));
+std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info,
+                              const std::string& exr_compression) {
+  return write_render_outputs(exr_path, film, render_metadata(info), exr_compression);
 }
 
 }  // namespace clpt

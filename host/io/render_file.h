@@ -30,7 +30,7 @@ struct RenderFileInfo {
   std::string precision;                // clpt:precision, fast | robust | double
   std::optional<int64_t> rr_from;       // clpt:rr_from, -1 for no Russian roulette
   std::string estimator;                // clpt:estimator, book | nee
-  std::string sampler;                  // clpt:sampler, jitter | grid | sobol
+  std::string sampler;                  // clpt:sampler, jitter | grid | sobol | sobol-grid
   bool adaptive = false;                // clpt:adaptive = 1: adaptive sampling (render/adaptive_sampling.h)
   std::optional<uint64_t> max_bounces;  // clpt:max_bounces
   std::optional<uint64_t> dropped_samples;  // clpt:dropped_samples, NaN/Inf samples left out
@@ -56,7 +56,9 @@ struct RenderFile {
 // channel (named, with what the file must hold), a variance file missing or of another size.
 RenderFile read_render_file(const std::string& path, const std::string& what = "");
 
-// Writes the EXR at `exr_path` and its PNG preview (image_io.h). Returns the PNG's path.
-std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info);
+// Writes the EXR at `exr_path` (compressed with `exr_compression`, io/exr_writer.h) and its PNG
+// preview (image_io.h). Returns the PNG's path.
+std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info,
+                              const std::string& exr_compression = "zip");
 
 }  // namespace clpt
