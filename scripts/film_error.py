@@ -5,11 +5,14 @@ Images are little-endian float32 RGB Portable Float Maps, the raw films `clpt re
 writes (NAME.pfm the per-pixel mean, NAME.var.pfm beside it the variance of that mean).
 
   film_error.py rmse IMAGE.pfm REFERENCE.pfm
-      prints `rmse R raw_rmse R0 reference_noise V pixels N`, over all pixels and channels:
-      raw_rmse = sqrt(mean((x - r)^2)); reference_noise = mean of the reference's variance of the
-      mean (REFERENCE.var.pfm, which must exist); rmse = sqrt(max(0, raw_rmse^2 - reference_noise)).
-      The reference is an independent estimate, so E[(x - r)^2] = E[(x - E r)^2] + Var(r):
-      subtracting its mean variance leaves the image's error against the converged image itself.
+      prints `rmse R raw_rmse R0 reference_noise V pixels N top_share S`, over all pixels and
+      channels: raw_rmse = sqrt(mean((x - r)^2)); reference_noise = mean of the reference's
+      variance of the mean (REFERENCE.var.pfm, which must exist); rmse = sqrt(max(0, raw_rmse^2 -
+      reference_noise)). The reference is an independent estimate, so E[(x - r)^2] =
+      E[(x - E r)^2] + Var(r): subtracting its mean variance leaves the image's error against the
+      converged image itself. top_share: the fraction of the sum of (x - r)^2 that lies in the
+      0.1% of pixels (at least one) where it is largest; a share far above 0.001 that grows with
+      the samples is a bias in few pixels (an edge, a pixel filter), not noise.
   film_error.py ppm-match IMAGE.pfm BOOK.ppm
       checks that BOOK.ppm (the book renderer's clamped, gamma 1/2.2, 8-bit ASCII PPM, top row
       first) is IMAGE tone mapped the book's way; prints `values V differ D max_step M` and exits 1
@@ -85,10 +88,16 @@ def rmse(image_path, reference_path):
     same_size(image, image_path, reference, reference_path)
     same_size(reference_var, variance_path(reference_path), reference, reference_path)
     n = len(image[2])
-    mse = math.fsum((x - r) ** 2 for x, r in zip(image[2], reference[2])) / n
+    squares = [(x - r) ** 2 for x, r in zip(image[2], reference[2])]
+    total = math.fsum(squares)
+    mse = total / n
     noise = math.fsum(reference_var[2]) / n
+    pixels = image[0] * image[1]
+    per_pixel = sorted((squares[3 * p] + squares[3 * p + 1] + squares[3 * p + 2] for p in range(pixels)),
+                       reverse=True)
+    top = math.fsum(per_pixel[:max(1, pixels // 1000)])
     print(f"rmse {math.sqrt(max(0.0, mse - noise)):.6g} raw_rmse {math.sqrt(mse):.6g} "
-          f"reference_noise {noise:.6g} pixels {image[0] * image[1]}")
+          f"reference_noise {noise:.6g} pixels {pixels} top_share {top / total if total > 0 else 0:.4g}")
     return 0
 
 

@@ -2,8 +2,8 @@
 # scripts/time_to_book_error.sh and scripts/film_error.py without the book renderer and without
 # timing anything: bad arguments give the usage or a message naming the argument and exit 2; a
 # book image that is not the book binary's render exits 1; film_error.py's RMSE takes the
-# reference's noise out as documented and its PPM check accepts the book's tone mapping and
-# rejects a value two steps off.
+# reference's noise out as documented (and gives the worst pixels' share of the error), and its
+# PPM check accepts the book's tone mapping and rejects a value two steps off.
 #   time_to_book_error_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -39,10 +39,11 @@ printf 'P3\n2 1\n255\n186 186 186 186 186 188 ' >off.ppm
 
 # film_error.py: raw RMSE 0.1; minus the reference's variance 0.0036: sqrt(0.01 - 0.0036) = 0.08.
 out=$(python3 "$film_error" rmse image.pfm ref.pfm) || fail "film_error.py rmse exited $?"
-read -r _ rmse _ raw _ noise _ pixels <<<"$out"
+read -r _ rmse _ raw _ noise _ pixels _ top <<<"$out"
 awk -v r="$rmse" -v w="$raw" -v n="$noise" 'BEGIN {exit !(r > 0.07999 && r < 0.08001 && w > 0.09999 && w < 0.10001 && n > 0.00359 && n < 0.00361)}' ||
   fail "film_error.py rmse: '$out', expected rmse 0.08 raw_rmse 0.1 reference_noise 0.0036"
 [[ $pixels == 2 ]] || fail "film_error.py rmse counted $pixels pixels, expected 2"
+[[ $top == 0.5 ]] || fail "film_error.py rmse: top_share $top, expected 0.5 (one of two equal pixels)"
 python3 "$film_error" ppm-match image.pfm match.ppm >out.txt || fail "ppm-match rejected the book's tone mapping: $(cat out.txt)"
 python3 "$film_error" ppm-match image.pfm off.ppm >out.txt && fail "ppm-match accepted a value 2 steps off: $(cat out.txt)"
 grep -q 'differ 1 max_step 2' out.txt || fail "ppm-match report: $(cat out.txt)"
