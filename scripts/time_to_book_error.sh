@@ -42,6 +42,9 @@ DEFAULT_SETS=(
   "--estimator nee --sampler sobol --precision fast"
   "--estimator nee --sampler sobol --rr-from 2"
   "--estimator nee --sampler sobol --precision fast --rr-from 2"
+  "--estimator nee --sampler sobol-grid"
+  "--estimator nee --sampler sobol-grid --exr-compression none"
+  "--estimator nee --sampler sobol-grid --precision fast --exr-compression none"
 )
 
 [[ $# -ge 3 ]] || usage
@@ -91,8 +94,9 @@ rmse_at() {
 
 # fewest_spp OPTIONS...: prints "SPP RMSE", the fewest spp found whose RMSE reaches the target.
 fewest_spp() {
-  local unit=16 probe e spp lo=0 hi=0 hi_e mid step
-  [[ " $* " == *" --sampler jitter "* || " $* " == *" --sampler sobol "* ]] && unit=1
+  local unit=1 probe e spp lo=0 hi=0 hi_e mid step
+  # The grid sampler (the scene's own, when no --sampler is given) takes multiples of 16 spp.
+  [[ " $* " == *" --sampler grid "* || " $* " != *" --sampler "* ]] && unit=16
   probe=$((4 * unit))
   e=$(rmse_at "$probe" "$@")
   spp=$(awk -v p="$probe" -v e="$e" -v t="$target" -v u="$unit" \
