@@ -101,6 +101,14 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   // A PLY header with bytes that are not ASCII text made assimp abort on an internal assertion.
   EXPECT_THROW(parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 3\nproperty fl\xff\xffoat x\nend_header\n0\n1\n2\n", "ply"),
                MeshFileError);
+  // A file is read as what its extension says: a PLY body under another extension is refused,
+  // never handed to the PLY reader past the PLY checks (a headerless one named .glb corrupted
+  // assimp's heap).
+  const std::string headerless_ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nelement face ement vertex 4\npro\n0 1 0 0 0 1\n4 0 1 2 3\n";
+  for (const char* other : {"glb", "gltf", "obj", "stl"}) EXPECT_THROW(parse_mesh_file(headerless_ply, other), MeshFileError) << other;
+  const std::string square_ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_EQ(parse_mesh_file(square_ply, "ply").mesh.triangles.size(), 1u);
+  EXPECT_THROW(parse_mesh_file(square_ply, "glb"), MeshFileError);
   // NUL bytes in an OBJ made assimp's OBJ reader crash.
   EXPECT_THROW(parse_mesh_file(std::string_view("v 0 0 0\nv 1 0 0\0\nv 0 1 0\nf 1 2 3\n", 33), "obj"), MeshFileError);
   // mtllib lines are not given to assimp (one followed by "map_K" crashed it); the mesh loads.

@@ -4,6 +4,7 @@
 // returns is checked again (scene/assimp_mesh.cpp) before clpt uses it.
 #include "scene/mesh_file.h"
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <system_error>
 
 #include "scene/assimp_mesh.h"
@@ -83,6 +85,21 @@ void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string&
   }
 }
 
+// Leaves `importer` only the readers that claim `extension`. assimp picks a reader by the file's
+// extension, but when that reader declines the contents it tries every other reader on them: a
+// PLY file named .glb went to the PLY reader past clpt's PLY checks (they follow the extension)
+// and corrupted the heap (found by fuzz_mesh_file). A file is now read as what its extension says
+// or refused. Unregistered readers are no longer the importer's to delete, so they are deleted here.
+void keep_only_readers_of(Assimp::Importer& importer, const std::string& extension) {
+  for (size_t i = importer.GetImporterCount(); i-- > 0;) {
+    Assimp::BaseImporter* reader = importer.GetImporter(i);
+    std::set<std::string> claimed;
+    reader->GetExtensionList(claimed);
+    if (claimed.count(extension)) continue;
+    if (importer.UnregisterLoader(reader) == aiReturn_SUCCESS) delete reader;
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& mesh_file_extensions() {
@@ -134,6 +151,7 @@ MeshFileContents parse_mesh_file(std::string_view bytes, const std::string& exte
   const std::string obj_text = extension == "obj" ? without_obj_material_libraries(bytes) : std::string();
   if (extension == "obj") bytes = obj_text;
   Assimp::Importer importer;
+  keep_only_readers_of(importer, extension);
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, extension.c_str());
   if (!scene) throw MeshFileError(std::string("assimp cannot read it: ") + importer.GetErrorString());
   // The importer owns the scene and its post-processing steps change it in place; the const of
