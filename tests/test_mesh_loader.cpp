@@ -109,6 +109,15 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   const std::string square_ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
   EXPECT_EQ(parse_mesh_file(square_ply, "ply").mesh.triangles.size(), 1u);
   EXPECT_THROW(parse_mesh_file(square_ply, "glb"), MeshFileError);
+  // A face with no indices: refused, naming it (assimp's triangulation aborted the process on a
+  // mesh whose faces were all empty).
+  const std::string empty_face_ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0\n";
+  try {
+    parse_mesh_file(empty_face_ply, "ply");
+    ADD_FAILURE() << "a PLY face of no indices loaded";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 0 of mesh 0 has no vertex indices"), std::string::npos) << e.what();
+  }
   // NUL bytes in an OBJ made assimp's OBJ reader crash.
   EXPECT_THROW(parse_mesh_file(std::string_view("v 0 0 0\nv 1 0 0\0\nv 0 1 0\nf 1 2 3\n", 33), "obj"), MeshFileError);
   // mtllib lines are not given to assimp (one followed by "map_K" crashed it); the mesh loads.

@@ -72,7 +72,13 @@ void declare_primitive_types(aiScene& scene) {
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
     aiMesh& m = *scene.mMeshes[i];
     unsigned types = 0;
-    for (unsigned f = 0; f < m.mNumFaces; ++f) types |= primitive_type(m.mFaces[f].mNumIndices);
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      // A mesh of empty faces declares no type, and assimp's triangulation then counts every face
+      // that is not a triangle as one to split and fails the same assertion (a PLY face list of
+      // count 0; found by fuzz_mesh_file on 2026-12-03).
+      if (m.mFaces[f].mNumIndices == 0) throw MeshFileError(element("face", f, i) + " has no vertex indices");
+      types |= primitive_type(m.mFaces[f].mNumIndices);
+    }
     m.mPrimitiveTypes = types;
   }
 }

@@ -19,7 +19,8 @@ namespace clpt {
 // triangulation runs. Debian's assimp 5.2 is built with assertions on, and its triangulation
 // aborts the process (ai_assert numOut != pMesh->mNumFaces, TriangulateProcess.cpp:238) on a mesh
 // that declares polygons but has none, as some malformed PLY files make its reader declare
-// (found by tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks").
+// (found by tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks"). Throws
+// MeshFileError naming the face ("face 3 of mesh 0") for a face without indices.
 void declare_primitive_types(aiScene& scene);
 
 // Throws MeshFileError naming the element ("vertex 12 of mesh 0") when a vertex is not finite or
