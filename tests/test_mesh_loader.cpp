@@ -118,6 +118,21 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   } catch (const MeshFileError& e) {
     EXPECT_NE(std::string(e.what()).find("face 0 of mesh 0 has no vertex indices"), std::string::npos) << e.what();
   }
+  // A PLY header is checked against the format's grammar before assimp reads it (mangled lines
+  // made its reader write past its buffers), naming the line; comments, obj_info, CRLF line ends
+  // and blank lines are PLY.
+  try {
+    parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\npropertyformat binary_big_endian 1.0blue\nend_header\n0\n1\n2\n", "ply");
+    ADD_FAILURE() << "a mangled PLY header loaded";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 5 of the PLY header is not a PLY header line: 'propertyformat binary_big_endian 1.0blue'"),
+              std::string::npos) << e.what();
+  }
+  for (const char* bad : {"ply\nformat ascii 2.0\n", "ply\nformat ascii 1.0\nproperty float x\n", "ply\nformat ascii 1.0\nelement vertex -3\n",
+                          "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar vertex_indices\n", "ply\nformat ascii 1.0\nelement vertex 3\nprope\n"})
+    EXPECT_THROW(parse_mesh_file(std::string(bad) + "end_header\n0 0 0\n", "ply"), MeshFileError) << bad;
+  const std::string crlf_ply = "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info none\r\n\r\nelement vertex 3\r\nproperty float32 x\r\nproperty float32 y\r\nproperty float32 z\r\nelement face 1\r\nproperty list uint8 int32 vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n";
+  EXPECT_EQ(parse_mesh_file(crlf_ply, "ply").mesh.triangles.size(), 1u);
   // NUL bytes in an OBJ made assimp's OBJ reader crash.
   EXPECT_THROW(parse_mesh_file(std::string_view("v 0 0 0\nv 1 0 0\0\nv 0 1 0\nf 1 2 3\n", 33), "obj"), MeshFileError);
   // mtllib lines are not given to assimp (one followed by "map_K" crashed it); the mesh loads.

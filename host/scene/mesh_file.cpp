@@ -18,6 +18,7 @@
 #include <memory>
 #include <set>
 #include <system_error>
+#include <vector>
 
 #include "scene/assimp_mesh.h"
 
@@ -61,6 +62,55 @@ std::string without_obj_material_libraries(std::string_view bytes) {
   return out;
 }
 
+// Throws MeshFileError naming the line (1-based) unless `header` (the bytes up to end_header)
+// is a PLY header by the format's grammar: "ply", one "format ascii|binary_little_endian|
+// binary_big_endian 1.0", then comment, obj_info, "element NAME COUNT", "property TYPE NAME" and
+// "property list TYPE TYPE NAME" lines (properties after an element), and "end_header". assimp
+// 5.2's PLY reader wrote past its buffers on headers with mangled lines (a line
+// "propertyformat binary_big_endian 1.0blue", elements declared twice; found by fuzz_mesh_file).
+void check_ply_header(std::string_view header) {
+  static const std::set<std::string_view> kTypes = {"char",  "uchar",  "short",   "ushort",  "int",    "uint",
+                                                    "float", "double", "int8",    "uint8",   "int16",  "uint16",
+                                                    "int32", "uint32", "float32", "float64"};
+  static const std::set<std::string_view> kFormats = {"ascii", "binary_little_endian", "binary_big_endian"};
+  auto is_count = [](std::string_view w) {
+    return !w.empty() && w.size() <= 10 && std::all_of(w.begin(), w.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  bool in_element = false;
+  size_t line_number = 0;
+  for (size_t begin = 0; begin < header.size();) {
+    size_t end = header.find('\n', begin);
+    if (end == std::string_view::npos) end = header.size();
+    const std::string_view line = header.substr(begin, end - begin);
+    begin = end + 1;
+    ++line_number;
+    std::vector<std::string_view> words;
+    for (size_t at = 0; at < line.size();) {
+      while (at < line.size() && std::isspace(static_cast<unsigned char>(line[at]))) ++at;
+      size_t stop = at;
+      while (stop < line.size() && !std::isspace(static_cast<unsigned char>(line[stop]))) ++stop;
+      if (stop > at) words.push_back(line.substr(at, stop - at));
+      at = stop;
+    }
+    bool ok;
+    if (line_number == 1) ok = words.size() == 1 && words[0] == "ply";
+    else if (line_number == 2) ok = words.size() == 3 && words[0] == "format" && kFormats.count(words[1]) && words[2] == "1.0";
+    else if (words.empty()) ok = true;
+    else if (words[0] == "comment" || words[0] == "obj_info") ok = true;
+    else if (words[0] == "element") ok = in_element = words.size() == 3 && is_count(words[2]);
+    else if (words[0] == "property" && words.size() == 3) ok = in_element && kTypes.count(words[1]);
+    else if (words[0] == "property" && words.size() == 5)
+      ok = in_element && words[1] == "list" && kTypes.count(words[2]) && kTypes.count(words[3]);
+    else ok = words.size() == 1 && words[0] == "end_header";
+    if (!ok) {
+      std::string shown(line.substr(0, 80));
+      std::replace_if(shown.begin(), shown.end(), [](char c) { return c == '\r' || c == '\t'; }, ' ');
+      throw MeshFileError("line " + std::to_string(line_number) + " of the PLY header is not a PLY header line: '" +
+                          shown + "'");
+    }
+  }
+}
+
 // Inputs on which assimp 5.2 does not come back, refused before it sees them (found by
 // tests/fuzz/fuzz_mesh_file; README "Known library crashes and leaks").
 void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string& extension) {
@@ -83,6 +133,7 @@ void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string&
     if (c >= 0x80 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t'))
       throw MeshFileError("the PLY header has a byte that is not ASCII text at offset " + std::to_string(i));
   }
+  check_ply_header(bytes.substr(0, header_end));
 }
 
 // Leaves `importer` only the readers that claim `extension`. assimp picks a reader by the file's
