@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -139,6 +140,52 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   EXPECT_EQ(parse_mesh_file("mtllib 8\nmap_Kne\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "obj").mesh.triangles.size(), 1u);
   EXPECT_THROW(mesh_file_extension("a.fbx"), MeshFileError);
   EXPECT_EQ(mesh_file_extension("dir.x/A.OBJ"), "obj");
+}
+
+// assimp allocates what a PLY header declares before it reads the body (a 2 kB file declaring
+// 33,333,324 vertices ran the fuzzer out of memory), so clpt refuses a header whose elements
+// cannot fit in the bytes after it, counting each value's least size, and names the element.
+// The bound is the least size, so a file holding exactly what it declares loads, in either format.
+TEST(MeshFile, RefusesAPlyHeaderDeclaringMoreThanItsBodyHolds) {
+  const std::string ascii_header = "ply\nformat ascii 1.0\nelement vertex 33333324\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  try {
+    parse_mesh_file(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply");
+    ADD_FAILURE() << "a PLY declaring 33,333,324 vertices in 27 bytes loaded";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares 33333324 'vertex' elements, more than the 27 bytes"),
+              std::string::npos) << e.what();
+  }
+  // ASCII written as tightly as it can be: one-digit values, single separators, no newline at the end.
+  const std::string tight = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2";
+  EXPECT_EQ(parse_mesh_file(tight, "ply").mesh.triangles.size(), 1u);
+  // Binary: 3 vertices of 3 floats and one face (a uchar count, 3 ints) is 49 bytes after the header.
+  auto binary_ply = [](int vertex_count) {
+    std::string out = "ply\nformat binary_little_endian 1.0\nelement vertex " + std::to_string(vertex_count) +
+                      "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    auto put = [&out](const void* bytes, size_t size) { out.append(static_cast<const char*>(bytes), size); };
+    const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const unsigned char count = 3;
+    const int32_t indices[3] = {0, 1, 2};  // little-endian on every machine clpt is built for
+    put(xyz, sizeof xyz);
+    put(&count, 1);
+    put(indices, sizeof indices);
+    return out;
+  };
+  EXPECT_EQ(parse_mesh_file(binary_ply(3), "ply").mesh.triangles.size(), 1u);
+  try {
+    parse_mesh_file(binary_ply(5), "ply");
+    ADD_FAILURE() << "a binary PLY declaring 5 vertices in the bytes of 3 loaded";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares 5 'vertex' elements"), std::string::npos) << e.what();
+  }
+  // An element with a count and no properties would need no bytes at all; it is refused.
+  try {
+    parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 33333324\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", "ply");
+    ADD_FAILURE() << "a PLY element without properties loaded";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares element 'vertex' without properties"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(MeshFile, RefusesWhatIsNotARegularFile) {

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <set>
 #include <system_error>
@@ -68,16 +69,42 @@ std::string without_obj_material_libraries(std::string_view bytes) {
 // "property list TYPE TYPE NAME" lines (properties after an element), and "end_header". assimp
 // 5.2's PLY reader wrote past its buffers on headers with mangled lines (a line
 // "propertyformat binary_big_endian 1.0blue", elements declared twice; found by fuzz_mesh_file).
-void check_ply_header(std::string_view header) {
-  static const std::set<std::string_view> kTypes = {"char",  "uchar",  "short",   "ushort",  "int",    "uint",
-                                                    "float", "double", "int8",    "uint8",   "int16",  "uint16",
-                                                    "int32", "uint32", "float32", "float64"};
+// It also refuses a header whose elements cannot fit in the `body_bytes` after it, counting each
+// value's least size (ASCII: a digit and a separator; binary: its type's size; a list: its count),
+// because assimp allocates what the header declares before it reads a byte of the body (a 2 kB
+// PLY declaring 33,333,324 vertices ran the fuzzer out of memory). An element with a count but no
+// properties is refused for the same reason: it would need no bytes at all.
+void check_ply_header(std::string_view header, size_t body_bytes) {
+  static const std::map<std::string_view, unsigned> kTypeBytes = {
+      {"char", 1},  {"uchar", 1},   {"short", 2},   {"ushort", 2},  {"int", 4},     {"uint", 4},
+      {"float", 4}, {"double", 8},  {"int8", 1},    {"uint8", 1},   {"int16", 2},   {"uint16", 2},
+      {"int32", 4}, {"uint32", 4},  {"float32", 4}, {"float64", 8}};
   static const std::set<std::string_view> kFormats = {"ascii", "binary_little_endian", "binary_big_endian"};
   auto is_count = [](std::string_view w) {
     return !w.empty() && w.size() <= 10 && std::all_of(w.begin(), w.end(), [](char c) { return c >= '0' && c <= '9'; });
   };
+  bool ascii = true;
   bool in_element = false;
   size_t line_number = 0;
+  // The element being declared: its header line, its name, its count and the fewest bytes one takes.
+  size_t element_line = 0;
+  std::string element_name;
+  double element_count = 0, element_bytes = 0;
+  double body_bytes_needed = 0;  // double: counts of up to 10 digits times many properties
+  auto close_element = [&] {
+    if (element_line == 0) return;
+    if (element_count > 0 && element_bytes == 0)
+      throw MeshFileError("line " + std::to_string(element_line) + " of the PLY header declares element '" +
+                          element_name + "' without properties");
+    body_bytes_needed += element_count * element_bytes;
+    if (body_bytes_needed > static_cast<double>(body_bytes))
+      throw MeshFileError("line " + std::to_string(element_line) + " of the PLY header declares " +
+                          std::to_string(static_cast<unsigned long long>(element_count)) + " '" + element_name +
+                          "' elements, more than the " + std::to_string(body_bytes) +
+                          " bytes after end_header can hold (the elements up to it need at least " +
+                          std::to_string(static_cast<unsigned long long>(body_bytes_needed)) + ")");
+  };
+  auto value_bytes = [&](std::string_view type) { return ascii ? 2.0 : double(kTypeBytes.at(type)); };
   for (size_t begin = 0; begin < header.size();) {
     size_t end = header.find('\n', begin);
     if (end == std::string_view::npos) end = header.size();
@@ -94,14 +121,30 @@ void check_ply_header(std::string_view header) {
     }
     bool ok;
     if (line_number == 1) ok = words.size() == 1 && words[0] == "ply";
-    else if (line_number == 2) ok = words.size() == 3 && words[0] == "format" && kFormats.count(words[1]) && words[2] == "1.0";
-    else if (words.empty()) ok = true;
+    else if (line_number == 2) {
+      ok = words.size() == 3 && words[0] == "format" && kFormats.count(words[1]) && words[2] == "1.0";
+      ascii = ok && words[1] == "ascii";
+    } else if (words.empty()) ok = true;
     else if (words[0] == "comment" || words[0] == "obj_info") ok = true;
-    else if (words[0] == "element") ok = in_element = words.size() == 3 && is_count(words[2]);
-    else if (words[0] == "property" && words.size() == 3) ok = in_element && kTypes.count(words[1]);
-    else if (words[0] == "property" && words.size() == 5)
-      ok = in_element && words[1] == "list" && kTypes.count(words[2]) && kTypes.count(words[3]);
-    else ok = words.size() == 1 && words[0] == "end_header";
+    else if (words[0] == "element") {
+      ok = in_element = words.size() == 3 && is_count(words[2]);
+      if (ok) {
+        close_element();
+        element_line = line_number;
+        element_name = std::string(words[1].substr(0, 40));
+        element_count = std::stod(std::string(words[2]));
+        element_bytes = 0;
+      }
+    } else if (words[0] == "property" && words.size() == 3) {
+      ok = in_element && kTypeBytes.count(words[1]);
+      if (ok) element_bytes += value_bytes(words[1]);
+    } else if (words[0] == "property" && words.size() == 5) {
+      ok = in_element && words[1] == "list" && kTypeBytes.count(words[2]) && kTypeBytes.count(words[3]);
+      if (ok) element_bytes += value_bytes(words[2]);  // the list's count; the list may be empty
+    } else {
+      ok = words.size() == 1 && words[0] == "end_header";
+      if (ok) close_element();
+    }
     if (!ok) {
       std::string shown(line.substr(0, 80));
       std::replace_if(shown.begin(), shown.end(), [](char c) { return c == '\r' || c == '\t'; }, ' ');
@@ -133,7 +176,7 @@ void refuse_what_assimp_cannot_handle(std::string_view bytes, const std::string&
     if (c >= 0x80 || (c < 0x20 && c != '\n' && c != '\r' && c != '\t'))
       throw MeshFileError("the PLY header has a byte that is not ASCII text at offset " + std::to_string(i));
   }
-  check_ply_header(bytes.substr(0, header_end));
+  check_ply_header(bytes.substr(0, header_end), bytes.size() - header_end);
 }
 
 // Leaves `importer` only the readers that claim `extension`. assimp picks a reader by the file's
