@@ -286,6 +286,24 @@ CLPT_INLINE Vec3 to_world(Vec3 local_dir, Vec3 n) {
 
 /* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
  * may fold `x != x` to false (docs/numerics.md). */
+/* a / b for a in [0, 2^31) and b in [1, 2^30), exact, by float estimates and integer corrections
+ * (the kernels divide job and pixel indices, under 2^28: render/limits.h bounds a launch). Why not
+ * a / b: CPUs have no vector integer division, so a division in the code before the lockstep
+ * megakernel's loop (the job's pixel, sample, row and column) made LLVM's cost model keep that
+ * whole region scalar (docs/performance.md, "What limits the speed"). The first estimate is
+ * within q 2^-22 + 1 of q = floor(a / b); the remainder it leaves, under 2^10 + 2 b in size,
+ * gives a second estimate within 1; the last step is exact integer arithmetic. Holds with fast
+ * maths too, whose float errors are a few ulp. */
+CLPT_INLINE uint clpt_udiv(uint a, uint b) {
+  const float fb = (float)b;
+  uint q = (uint)((float)a / fb);
+  q += (uint)(int)((float)(int)(a - q * b) / fb);
+  const int r = (int)(a - q * b);
+  q = r < 0 ? q - 1u : q;
+  q = r >= (int)b ? q + 1u : q;
+  return q;
+}
+
 CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 CLPT_INLINE bool is_finite_real(double x) {

@@ -75,8 +75,8 @@ CLPT_INLINE RngKey rng_key_of(const GpuRenderParams* params) {
 }
 
 CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint sample) {
-  const uint col = pixel % params->width;
-  const uint row = pixel / params->width;
+  const uint row = clpt_udiv(pixel, params->width);
+  const uint col = pixel - row * params->width;
   const Float2 subpixel = camera_subpixel(rng_key_of(params), params->sampler, pixel, sample);
   PathState path;
   path.origin = v3_splat(0.0f);
@@ -231,9 +231,14 @@ typedef struct SurfacePoint {
 
 CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Vec3 o, Vec3 d, real t) {
   SurfacePoint s;
-  const SphereGeometry sphere = sphere_geometry(scene->spheres, hit.sphere < 0 ? 0 : hit.sphere);
   s.point = v3_add_scaled(o, d, t);
+#if CLPT_HIT_CENTRE /* the loop carried c - o (intersect.cl): the normal is (p - c) / r, normalised */
+  s.normal = v3_normalize(v3_sub(v3_scale(d, t), hit.centre_offset));
+  (void)scene; /* read by the triangle half below only, which CLPT_HIT_CENTRE never has */
+#else
+  const SphereGeometry sphere = sphere_geometry(scene->spheres, hit.sphere < 0 ? 0 : hit.sphere);
   s.normal = sphere_normal_at(&sphere, o, d, t);
+#endif
   s.on_triangle = 0;
 #if CLPT_HAS_TRIANGLES
   const int tri = hit.triangle < 0 ? 0 : hit.triangle;

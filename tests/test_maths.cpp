@@ -1,9 +1,11 @@
 // The kernels' own replacements for library maths (kernels/maths.cl), against the host's libm:
 // unit_circle for sin/cos and pow_unit for pow, both written so that PoCL can vectorise them, in
-// float (fast and robust) and in double (the double preset).
+// float (fast and robust) and in double (the double preset); clpt_udiv for integer division.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <random>
 
 #include "device_test_util.h"
 
@@ -26,6 +28,40 @@ TEST(Maths, UnitCircleMatchesSinCos) {
     worst = std::max({worst, std::abs(cs[i].s[0] - std::cos(angle)), std::abs(cs[i].s[1] - std::sin(angle))});
   }
   EXPECT_LT(worst, 4e-7);
+}
+
+// clpt_udiv is exact over its whole contract (a below 2^31, b in [1, 2^30)): the quotients at and
+// beside multiples of b, where a float estimate rounds across them, the largest a, and random pairs; with
+// fast maths too (the fast preset's build option), whose float division may be approximate.
+TEST(Maths, UdivIsExactIntegerDivision) {
+  std::vector<cl_uint2> in;
+  std::mt19937 rng(12345);
+  const std::vector<uint32_t> divisors = {1u, 2u, 3u, 7u, 64u, 640u, 641u, 4095u, 65536u, 307200u,
+                                          8388607u, 8388608u, 16777217u, (1u << 30) - 1u};
+  for (uint32_t b : divisors) {
+    const uint64_t top = 0x7fffffffull;
+    for (uint64_t k : {uint64_t(0), uint64_t(1), uint64_t(2), uint64_t(1000), uint64_t(1) << 22, uint64_t(1) << 23,
+                       uint64_t(1) << 24, top / b - 1, top / b})
+      for (int64_t d : {-1, 0, 1})
+        if (const int64_t a = int64_t(k * b) + d; a >= 0 && uint64_t(a) <= top) in.push_back({{cl_uint(a), b}});
+    in.push_back({{cl_uint(top), b}});
+    for (int i = 0; i < 200; ++i) in.push_back({{cl_uint(rng() >> 1), b}});
+  }
+  for (int i = 0; i < 20000; ++i) in.push_back({{cl_uint(rng() >> 1), cl_uint(rng() % ((1u << 30) - 1u) + 1u)}});
+  for (const char* options : {"-cl-std=CL1.2", "-cl-std=CL1.2 -cl-unsafe-math-optimizations"}) {
+    Kernel kernel(test_program("probe_stages.cl", options), "probe_udiv", test_device().where());
+    Buffer buf = upload(in);
+    Buffer out(test_device(), in.size() * sizeof(cl_uint), CL_MEM_WRITE_ONLY, "quotients");
+    kernel.set_arg(0, buf);
+    kernel.set_arg(1, out);
+    test_device().launch(kernel, in.size(), 0, "probe_udiv");
+    const auto q = download<cl_uint>(out, in.size());
+    size_t wrong = 0;
+    for (size_t i = 0; i < in.size(); ++i)
+      if (q[i] != in[i].s[0] / in[i].s[1] && wrong++ < 5)
+        ADD_FAILURE() << options << ": " << in[i].s[0] << " / " << in[i].s[1] << " gave " << q[i];
+    EXPECT_EQ(wrong, 0u) << options << ", of " << in.size();
+  }
 }
 
 TEST(Maths, PowUnitMatchesPow) {

@@ -244,6 +244,12 @@ bool reads_spheres_by_select(const KernelFeatures& features) {
   return features.no_fast_gather && !features.generic && !features.spheres_in_bvh;
 }
 
+bool hit_carries_sphere_centre(const KernelFeatures& features) {
+  const Intersection intersection = features.intersection.value_or(default_intersection(features.precision));
+  return features.lockstep_group > 0 && !features.has_hierarchy() && !reads_spheres_by_select(features) &&
+         intersection != Intersection::Centre;
+}
+
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
@@ -275,6 +281,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
   if (reads_spheres_by_select(features)) o << " -DCLPT_NO_FAST_GATHER=1";
+  if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -374,6 +381,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
             ? ": selects where the device's compiler has no fast gathers, but with the fast preset"
             : "")
     << ")\n";
+  o << "  hit sphere's centre: "
+    << (hit_carries_sphere_centre(features)
+            ? "carried through the sphere loop (the lockstep megakernel, every sphere in the loop)"
+            : "read from the hit sphere (per-path or wavefront kernel, a hierarchy, selects or the textbook intersection)")
+    << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

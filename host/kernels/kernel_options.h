@@ -169,6 +169,12 @@ KernelFeatures generic_features(Precision precision = Precision::Robust);
 // in the loop.
 bool reads_spheres_by_select(const KernelFeatures& features);
 
+// Whether the sphere loop carries the hit sphere's centre (CLPT_HIT_CENTRE): in the CPU's lockstep
+// megakernel whose spheres are all in the loop, unless selects read the hit sphere anyway or the
+// intersection is the textbook one. There it replaces the shading's seven gathers of the hit
+// sphere's geometry by three selects per sphere (docs/performance.md, "What limits the speed").
+bool hit_carries_sphere_centre(const KernelFeatures& features);
+
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);
 

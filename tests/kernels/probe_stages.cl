@@ -153,3 +153,9 @@ __kernel void probe_pow_unit(__global const float2* in, __global float* out) {
   const size_t i = get_global_id(0);
   out[i] = pow_unit(in[i].x, in[i].y);
 }
+
+/* clpt_udiv(a, b) for each (a, b). */
+__kernel void probe_udiv(__global const uint2* in, __global uint* out) {
+  const size_t i = get_global_id(0);
+  out[i] = clpt_udiv(in[i].x, in[i].y);
+}
