@@ -51,7 +51,7 @@ CLPT_INLINE real sphere_radius(__global const GpuSphere* s) { return s->radius; 
 #endif
 
 /* CLPT_HIT_CENTRE (the host's choice, kernel_options.cpp: the CPU's lockstep megakernel with every
- * sphere in the loop): the loop carries the closest sphere's c - o, which the robust test computes
+ * sphere in the unrolled loop): the loop carries the closest sphere's c - o, which the robust test computes
  * anyway, by three selects per sphere, and the shading takes the normal from it instead of
  * gathering the hit sphere's surface point, normal and radius (seven gathers per path and
  * segment, slow on CPUs; measured 1.19x the paths/s of the book's image on an AMD EPYC Zen 4).

@@ -47,6 +47,14 @@ typedef float real;
 #ifndef CLPT_NO_FAST_GATHER
 #define CLPT_NO_FAST_GATHER 0
 #endif
+/* CLPT_MATERIAL_BY_SELECT (kernel_options.cpp): the hit sphere's material is picked by selects
+ * over the loop's spheres (path.cl, sphere_material) rather than gathered: with CLPT_NO_FAST_GATHER,
+ * and in the lockstep megakernel that carries the hit sphere's centre (intersect.cl) with the
+ * robust or double preset, where it measured 1.05-1.25x (docs/performance.md, "What limits the
+ * speed"; the fast preset's kernel stops vectorising with it). */
+#ifndef CLPT_MATERIAL_BY_SELECT
+#define CLPT_MATERIAL_BY_SELECT CLPT_NO_FAST_GATHER
+#endif
 
 /* Distance reported for "no hit". Finite on purpose: under -cl-fast-relaxed-math (which implies
  * -cl-finite-math-only) a compiler may fold comparisons with INFINITY. */
@@ -105,9 +113,9 @@ CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2])
  * is one per work-group, not a gather. */
 CLPT_INLINE Vec3 v3_load_apart(const float v[3]) { return v3(v[0], CLPT_Y_APART(v), v[2]); }
 /* A buffer's float[3] as v3_load_global, with y read apart where the kernels pick a sphere's fields
- * by selects (CLPT_NO_FAST_GATHER): the picks' reads are the same for every work-item, and SLP pairs
- * adjacent ones as it pairs the camera's. */
-#if CLPT_NO_FAST_GATHER
+ * by selects (CLPT_NO_FAST_GATHER, CLPT_MATERIAL_BY_SELECT): the picks' reads are the same for
+ * every work-item, and SLP pairs adjacent ones as it pairs the camera's. */
+#if CLPT_NO_FAST_GATHER || CLPT_MATERIAL_BY_SELECT
 #define v3_load_sphere_field(v) v3((v)[0], CLPT_Y_APART(v), (v)[2])
 #else
 #define v3_load_sphere_field(v) v3_load_global(v)

@@ -129,10 +129,10 @@ CLPT_INLINE SurfaceMaterial material_of(__global const GpuMaterial* m) {
   return s;
 }
 
-/* Sphere `index`'s material, as sphere_geometry (intersect.cl) reads its geometry: by selects
- * over the loop's spheres where gathers are slow, else by one indexed read of each field. */
+/* Sphere `index`'s material: by selects over the loop's spheres where CLPT_MATERIAL_BY_SELECT
+ * (maths.cl) says so, else by one indexed read of each field. The same values either way. */
 CLPT_INLINE SurfaceMaterial sphere_material(__global const GpuSphere* spheres, int index) {
-#if CLPT_NO_FAST_GATHER && defined(CLPT_SPHERE_COUNT)
+#if CLPT_MATERIAL_BY_SELECT && defined(CLPT_SPHERE_COUNT)
   SurfaceMaterial m = material_of(&spheres[0].material);
 #pragma unroll
   for (uint i = 1u; i < CLPT_SPHERE_COUNT; ++i) {
@@ -389,10 +389,12 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
       on_triangle ? &scene->triangle_shading[hit.triangle].material : &scene->spheres[index].material;
   const SurfaceMaterial material = material_of(stored);
 #else
-  __global const GpuMaterial* stored = &scene->spheres[index].material;
   const SurfaceMaterial material = sphere_material(scene->spheres, index);
+#if !CLPT_MATERIAL_BY_SELECT
+  __global const GpuMaterial* stored = &scene->spheres[index].material;
 #endif
-#if CLPT_NO_FAST_GATHER
+#endif
+#if CLPT_MATERIAL_BY_SELECT
   /* Picked by selects: read for every path, as a masked load would be costed as a gather. */
   const bool emitter = !missed && material.kind == CLPT_MATERIAL_EMITTER;
 #else

@@ -246,8 +246,13 @@ bool reads_spheres_by_select(const KernelFeatures& features) {
 
 bool hit_carries_sphere_centre(const KernelFeatures& features) {
   const Intersection intersection = features.intersection.value_or(default_intersection(features.precision));
-  return features.lockstep_group > 0 && !features.has_hierarchy() && !reads_spheres_by_select(features) &&
-         intersection != Intersection::Centre;
+  return features.lockstep_group > 0 && features.unroll_scene_loops && !features.has_hierarchy() &&
+         !reads_spheres_by_select(features) && intersection != Intersection::Centre;
+}
+
+bool picks_material_by_select(const KernelFeatures& features) {
+  return reads_spheres_by_select(features) ||
+         (hit_carries_sphere_centre(features) && features.precision != Precision::Fast);
 }
 
 std::string kernel_build_options(const KernelFeatures& features) {
@@ -282,6 +287,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
   if (reads_spheres_by_select(features)) o << " -DCLPT_NO_FAST_GATHER=1";
   if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
+  if (picks_material_by_select(features) && !reads_spheres_by_select(features)) o << " -DCLPT_MATERIAL_BY_SELECT=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -383,8 +389,13 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << ")\n";
   o << "  hit sphere's centre: "
     << (hit_carries_sphere_centre(features)
-            ? "carried through the sphere loop (the lockstep megakernel, every sphere in the loop)"
-            : "read from the hit sphere (per-path or wavefront kernel, a hierarchy, selects or the textbook intersection)")
+            ? "carried through the sphere loop (the lockstep megakernel, every sphere in the unrolled loop)"
+            : "read from the hit sphere (per-path or wavefront kernel, a rolled loop, a hierarchy, selects or the textbook intersection)")
+    << "\n";
+  o << "  hit sphere's material: "
+    << (picks_material_by_select(features)
+            ? "selects over the loop's spheres"
+            : hit_carries_sphere_centre(features) ? "indexed (the fast preset: selects stop its vectoriser)" : "indexed")
     << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();

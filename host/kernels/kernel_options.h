@@ -170,10 +170,17 @@ KernelFeatures generic_features(Precision precision = Precision::Robust);
 bool reads_spheres_by_select(const KernelFeatures& features);
 
 // Whether the sphere loop carries the hit sphere's centre (CLPT_HIT_CENTRE): in the CPU's lockstep
-// megakernel whose spheres are all in the loop, unless selects read the hit sphere anyway or the
-// intersection is the textbook one. There it replaces the shading's seven gathers of the hit
+// megakernel whose spheres are all in the unrolled loop (a rolled loop is the GPUs' shape, where
+// the carried values cost registers: 110 -> 169 VGPRs on gfx906), unless selects read the hit
+// sphere anyway or the intersection is the textbook one. There it replaces the shading's seven gathers of the hit
 // sphere's geometry by three selects per sphere (docs/performance.md, "What limits the speed").
 bool hit_carries_sphere_centre(const KernelFeatures& features);
+
+// Whether the hit sphere's material is picked by selects over the loop's spheres
+// (CLPT_MATERIAL_BY_SELECT): wherever its geometry is (reads_spheres_by_select), and where the
+// loop carries its centre with the robust or double preset (measured faster than the gathers on
+// an AMD Zen 4; with the fast preset the kernel stopped vectorising: docs/performance.md).
+bool picks_material_by_select(const KernelFeatures& features);
 
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);
