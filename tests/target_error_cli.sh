@@ -3,6 +3,8 @@
 #  * it stops at the target: exit 0, the summary says so, the progress line shows the estimate
 #    and the target, and the EXR records clpt:error_estimate (<= the target), clpt:target_error
 #    and clpt:stop;
+#  * a Sobol render's plan splits its half-films as a power of two first, without a target error
+#    only;
 #  * with --spp, whichever comes first: a small --spp stops at the sample count;
 #  * a checkpointed target render resumes (a checkpoint with its half-films);
 #  * --adaptive: a render interrupted at a round's end (32 spp) and resumed to 64 has the film of
@@ -31,6 +33,15 @@ python3 -c "import sys; e = float(sys.argv[1]); sys.exit(0 if 0 < e <= 0.2 else 
   fail "clpt:error_estimate '$estimate' is not in (0, 0.2]"
 meta t.exr 'clpt:target_error: "0.2"' >/dev/null || fail "t.exr lacks clpt:target_error 0.2"
 meta t.exr 'clpt:stop: "target error"' >/dev/null || fail "t.exr lacks clpt:stop \"target error\""
+
+# 1b. A Sobol render splits its half-films as a power of two first, unless it has a target error
+# (equal halves there: the error estimate's), and --explain says which.
+sobol=(--width 32 --height 24 --estimator nee --seed 5 --sampler sobol)
+"$clpt" render "$scene" "${sobol[@]}" --spp 6 --explain -q -o p.exr >p.txt 2>&1 || fail "--sampler sobol --spp 6 exited $?"
+grep -q "half-films of 4 and 2 spp" p.txt || fail "no 4 + 2 split in the plan: $(cat p.txt)"
+"$clpt" render "$scene" "${sobol[@]}" --spp 6 --target-error 0.001 --explain -q -o q.exr >q.txt 2>&1 ||
+  fail "--sampler sobol --target-error exited $?"
+grep -q "half-films of" q.txt && fail "a target-error render printed a power-of-two split: $(cat q.txt)"
 
 # 2. With --spp, whichever comes first.
 "$clpt" render "$scene" "${small[@]}" --target-error 0.001 --spp 4 -q -o s.exr || fail "--spp 4 exited $?"

@@ -17,17 +17,7 @@ namespace {
 // Samples sample_begin .. sample_begin + count - 1 of (pixel, dimension) from `sampler`.
 std::vector<cl_float4> draw(cl_uint sampler, cl_uint pixel, cl_uint dimension, cl_uint sample_begin, size_t count,
                             cl_uint k0 = 7, cl_uint k1 = 0) {
-  Kernel kernel(test_program("probe_stages.cl"), "probe_sampler", test_device().where());
-  Buffer out(test_device(), count * sizeof(cl_float4), CL_MEM_WRITE_ONLY, "out");
-  kernel.set_arg(0, k0);
-  kernel.set_arg(1, k1);
-  kernel.set_arg(2, sampler);
-  kernel.set_arg(3, pixel);
-  kernel.set_arg(4, dimension);
-  kernel.set_arg(5, sample_begin);
-  kernel.set_arg(6, out);
-  test_device().launch(kernel, count, 0, "probe_sampler");
-  return download<cl_float4>(out, count);
+  return run_probe<cl_float4>("probe_sampler", count, k0, k1, sampler, pixel, dimension, sample_begin);
 }
 
 // Number of distinct cells [i/2^a, (i+1)/2^a) x [j/2^b, (j+1)/2^b) that the first n points of the
@@ -105,16 +95,7 @@ TEST(SobolSampler, DrawsAreInTheUnitInterval) {
 
 // The camera's sub-pixel positions for samples sample_begin .. sample_begin + count - 1 of `pixel`.
 std::vector<cl_float2> subpixels(cl_uint sampler, cl_uint pixel, cl_uint sample_begin, size_t count) {
-  Kernel kernel(test_program("probe_stages.cl"), "probe_subpixel", test_device().where());
-  Buffer out(test_device(), count * sizeof(cl_float2), CL_MEM_WRITE_ONLY, "out");
-  kernel.set_arg(0, cl_uint(7));
-  kernel.set_arg(1, cl_uint(0));
-  kernel.set_arg(2, sampler);
-  kernel.set_arg(3, pixel);
-  kernel.set_arg(4, sample_begin);
-  kernel.set_arg(5, out);
-  test_device().launch(kernel, count, 0, "probe_subpixel");
-  return download<cl_float2>(out, count);
+  return run_probe<cl_float2>("probe_subpixel", count, cl_uint(7), cl_uint(0), sampler, pixel, sample_begin);
 }
 
 // The grid sampler's 16 positions (the centres of 4x4 strata), as indices 0..15, or -1 for any

@@ -145,7 +145,7 @@ NextPass plan_next_pass(const Film& film, const ErrorEstimate& estimate, const P
   // and the rest whatever the pass sizes were: the samples drawn, and so the image, depend on S
   // alone. The pass goes to the smaller half (half 0 on a tie) unless that one is full. (A
   // resumed render whose halves were split otherwise may pass an end; it still stops at S.)
-  const uint64_t end0 = half0_end(stop_spp, g, request.power_of_two_halves && !target_mode);
+  const uint64_t end0 = half0_end(stop_spp, g, request.power_of_two_halves);
   const uint64_t half_end[2] = {end0, stop_spp - end0};
   const bool half0_open = half_spp[0] < half_end[0];
   next.half = half0_open && (half_spp[0] <= half_spp[1] || half_spp[1] >= half_end[1]) ? 0 : 1;

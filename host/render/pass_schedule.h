@@ -31,10 +31,11 @@ struct PassRequest {
   double time_limit_s = 0;    // 0: none
   double target_error = 0;    // relative RMSE (error_estimate.h) at which to stop; 0: none
   uint32_t granularity = 1;   // samples per pass are a multiple of this (sampler period)
-  // Sobol samplers: without a target error, a render of S samples gives half 0 the smallest power
-  // of two at or above S / 2 and half 1 the rest (half0_end), not two equal halves, because their
-  // points are stratified in power-of-two blocks: 6 spp as 4 + 2 had 18% less squared error than
-  // as 3 + 3 (docs/sampler.md, "Half-films").
+  // Sobol samplers: a render of S samples gives half 0 the smallest power of two at or above
+  // S / 2 and half 1 the rest (half0_end), not two equal halves, because their points are
+  // stratified in power-of-two blocks: 6 spp as 4 + 2 had 18% less squared error than as 3 + 3
+  // (docs/sampler.md, "Half-films"). The render plan sets it only without a target error, whose
+  // estimate wants equal halves.
   bool power_of_two_halves = false;
   double pass_target_s = 0.5; // wall time per pass, from the measured rate
   bool adaptive = false;      // adaptive sampling (adaptive_sampling.h): rounds, and passes sized by the image alone

@@ -31,6 +31,13 @@ LaunchSizing sizing_for(const DevicePlan& d, const RenderRequest& request, size_
   return sizing;
 }
 
+// ", half-films of A and B spp ...": how a Sobol render of the plan's sample count splits.
+std::string half_films_line(const RenderPlan& plan) {
+  const uint64_t half0 = half0_end(plan.target_spp, plan.sampler_granularity, true);
+  return ", half-films of " + std::to_string(half0) + " and " + std::to_string(plan.target_spp - half0) +
+         " spp (a power of two first: Sobol nets)";
+}
+
 }  // namespace
 
 // The megakernel everywhere. On CPUs (PoCL) it runs its lockstep loop, which PoCL vectorises
@@ -86,7 +93,9 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   plan.time_limit_s = request.time_limit_s;
   plan.target_error = request.target_error;
   plan.sampler_granularity = s.sampler == Sampler::Grid ? 16u : 1u;
-  plan.power_of_two_halves = s.sampler == Sampler::Sobol || s.sampler == Sampler::SobolGrid;
+  // Sobol nets come in powers of two (render/pass_schedule.h); a target error keeps equal
+  // halves, whose difference estimates the error without bias (render/error_estimate.h).
+  plan.power_of_two_halves = (s.sampler == Sampler::Sobol || s.sampler == Sampler::SobolGrid) && request.target_error == 0;
   plan.adaptive = request.adaptive;
   plan.precision = request.precision;
   plan.use_kernel_cache = request.use_kernel_cache;
@@ -141,11 +150,7 @@ std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>&
                       : std::string())
     << ", passes in multiples of " << plan.sampler_granularity << " sample(s) per pixel"
     << (plan.sampler_granularity > 1 ? " (the grid sampler's period)" : "")
-    << (plan.power_of_two_halves && plan.target_spp > 0 && plan.target_error == 0
-            ? ", half-films of " + std::to_string(half0_end(plan.target_spp, plan.sampler_granularity, true)) + " and " +
-                  std::to_string(plan.target_spp - half0_end(plan.target_spp, plan.sampler_granularity, true)) +
-                  " spp (a power of two first: Sobol nets)"
-            : std::string())
+    << (plan.power_of_two_halves && plan.target_spp > 0 ? half_films_line(plan) : std::string())
     << ", kernel cache "
     << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";
   for (const DevicePlan& d : plan.devices) {
