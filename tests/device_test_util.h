@@ -29,17 +29,24 @@ std::vector<T> download(const Buffer& b, size_t count) {
   return out;
 }
 
-// Runs `kernel_name` of probe_stages.cl over `count` work-items with `args` as its first
-// arguments and a new buffer of `count` Out values as its last, and returns that buffer.
+// Runs `kernel_name` of probe_stages.cl, built with `options`, over `count` work-items with `args`
+// as its first arguments and a new buffer of `count` Out values as its last; returns that buffer.
 template <typename Out, typename... Args>
-std::vector<Out> run_probe(const char* kernel_name, size_t count, const Args&... args) {
-  Kernel kernel(test_program("probe_stages.cl"), kernel_name, test_device().where());
+std::vector<Out> run_probe_built(const std::string& options, const char* kernel_name, size_t count,
+                                 const Args&... args) {
+  Kernel kernel(test_program("probe_stages.cl", options), kernel_name, test_device().where());
   Buffer out(test_device(), count * sizeof(Out), CL_MEM_WRITE_ONLY, kernel_name);
   cl_uint index = 0;
   (kernel.set_arg(index++, args), ...);
   kernel.set_arg(index, out);
   test_device().launch(kernel, count, 0, kernel_name);
   return download<Out>(out, count);
+}
+
+// run_probe_built with the default options.
+template <typename Out, typename... Args>
+std::vector<Out> run_probe(const char* kernel_name, size_t count, const Args&... args) {
+  return run_probe_built<Out>("-cl-std=CL1.2", kernel_name, count, args...);
 }
 
 // Directory of the source tree (for scenes and references).

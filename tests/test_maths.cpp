@@ -15,13 +15,7 @@ namespace {
 TEST(Maths, UnitCircleMatchesSinCos) {
   std::vector<float> u;
   for (int i = 0; i <= 100000; ++i) u.push_back(float(i) / 100000.0f);
-  Kernel kernel(test_program("probe_stages.cl"), "probe_unit_circle", test_device().where());
-  Buffer in = upload(u);
-  Buffer out(test_device(), u.size() * sizeof(cl_float2), CL_MEM_WRITE_ONLY, "circle");
-  kernel.set_arg(0, in);
-  kernel.set_arg(1, out);
-  test_device().launch(kernel, u.size(), 0, "probe_unit_circle");
-  const auto cs = download<cl_float2>(out, u.size());
+  const auto cs = run_probe<cl_float2>("probe_unit_circle", u.size(), upload(u));
   double worst = 0;
   for (size_t i = 0; i < u.size(); ++i) {
     const double angle = 2 * 3.14159265358979323846 * double(u[i]);
@@ -49,13 +43,7 @@ TEST(Maths, UdivIsExactIntegerDivision) {
   }
   for (int i = 0; i < 20000; ++i) in.push_back({{cl_uint(rng() >> 1), cl_uint(rng() % ((1u << 30) - 1u) + 1u)}});
   for (const char* options : {"-cl-std=CL1.2", "-cl-std=CL1.2 -cl-unsafe-math-optimizations"}) {
-    Kernel kernel(test_program("probe_stages.cl", options), "probe_udiv", test_device().where());
-    Buffer buf = upload(in);
-    Buffer out(test_device(), in.size() * sizeof(cl_uint), CL_MEM_WRITE_ONLY, "quotients");
-    kernel.set_arg(0, buf);
-    kernel.set_arg(1, out);
-    test_device().launch(kernel, in.size(), 0, "probe_udiv");
-    const auto q = download<cl_uint>(out, in.size());
+    const auto q = run_probe_built<cl_uint>(options, "probe_udiv", in.size(), upload(in));
     size_t wrong = 0;
     for (size_t i = 0; i < in.size(); ++i)
       if (q[i] != in[i].s[0] / in[i].s[1] && wrong++ < 5)
@@ -71,13 +59,7 @@ TEST(Maths, PowUnitMatchesPow) {
       const float u = i == 0 ? 0.0f : std::ldexp(float(i % 1000 + 1) / 1000.0f, -(i / 1000));
       in.push_back({{u, a}});
     }
-  Kernel kernel(test_program("probe_stages.cl"), "probe_pow_unit", test_device().where());
-  Buffer buf = upload(in);
-  Buffer out(test_device(), in.size() * sizeof(float), CL_MEM_WRITE_ONLY, "pow");
-  kernel.set_arg(0, buf);
-  kernel.set_arg(1, out);
-  test_device().launch(kernel, in.size(), 0, "probe_pow_unit");
-  const auto p = download<float>(out, in.size());
+  const auto p = run_probe<float>("probe_pow_unit", in.size(), upload(in));
   double worst = 0;
   for (size_t i = 0; i < in.size(); ++i) {
     const double ref = std::pow(double(in[i].s[0]), double(in[i].s[1]));
