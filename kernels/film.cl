@@ -68,16 +68,19 @@ CLPT_INLINE uint job_count(const GpuRenderParams* params) { return params->pixel
  * is pixel pixel_begin + s from sample sample_begin; an adaptive launch's (params->slotted) is
  * slots[s], a pixel and its first sample, so one pixel may have several slots or none
  * (render/adaptive_sampling.h). film_sum_jobs sums per slot; the host adds each slot to its pixel. */
+CLPT_INLINE uint job_pass_sample(const GpuRenderParams* params, uint job) { return clpt_udiv(job, params->pixel_count); }
+CLPT_INLINE uint job_slot(const GpuRenderParams* params, uint job) {
+  return job - job_pass_sample(params, job) * params->pixel_count;
+}
+
 CLPT_INLINE uint job_pixel(const GpuRenderParams* params, __global const GpuSampleSlot* slots, uint job) {
-  const uint slot = job - clpt_udiv(job, params->pixel_count) * params->pixel_count;
+  const uint slot = job_slot(params, job);
   return params->slotted ? slots[slot].pixel : params->pixel_begin + slot;
 }
 
 CLPT_INLINE uint job_sample(const GpuRenderParams* params, __global const GpuSampleSlot* slots, uint job) {
-  const uint pass_sample = clpt_udiv(job, params->pixel_count);
-  const uint slot = job - pass_sample * params->pixel_count;
-  const uint first = params->slotted ? slots[slot].sample_begin : params->sample_begin;
-  return first + pass_sample;
+  const uint first = params->slotted ? slots[job_slot(params, job)].sample_begin : params->sample_begin;
+  return first + job_pass_sample(params, job);
 }
 
 CLPT_INLINE void job_result_store(__global float* results, uint job, uint jobs, Vec3 radiance, uint segments) {

@@ -292,8 +292,6 @@ CLPT_INLINE Vec3 to_world(Vec3 local_dir, Vec3 n) {
   return v3_add(v3_add(v3_scale(t, local_dir.x), v3_scale(b, local_dir.y)), v3_scale(n, local_dir.z));
 }
 
-/* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
- * may fold `x != x` to false (docs/numerics.md). */
 /* a / b for a in [0, 2^31) and b in [1, 2^30), exact, by float estimates and integer corrections
  * (the kernels divide job and pixel indices, under 2^28: render/limits.h bounds a launch). Why not
  * a / b: CPUs have no vector integer division, so a division in the code before the lockstep
@@ -312,6 +310,8 @@ CLPT_INLINE uint clpt_udiv(uint a, uint b) {
   return q;
 }
 
+/* NaN/Inf test on the representation: survives -cl-fast-relaxed-math, under which compilers
+ * may fold `x != x` to false (docs/numerics.md). */
 CLPT_INLINE bool is_finite_bits(float x) { return (as_uint(x) & 0x7f800000u) != 0x7f800000u; }
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 CLPT_INLINE bool is_finite_real(double x) {
