@@ -36,6 +36,16 @@ std::string scene_with_mesh(const std::string& mesh_body) {
          mesh_body + "\nmaterial = { type = \"lambertian\", reflectance = [0.5, 0.5, 0.5] }\n";
 }
 
+// Expects parse_mesh_file(bytes, extension) to refuse the file with a message containing `message`.
+void expect_refused(std::string_view bytes, const std::string& extension, const std::string& message) {
+  try {
+    parse_mesh_file(bytes, extension);
+    ADD_FAILURE() << "loaded; expected the refusal '" << message << "'";
+  } catch (const MeshFileError& e) {
+    EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+  }
+}
+
 // The scene loaded from memory as if it were a file in tests/scenes/meshes/ (mesh files resolve there).
 Scene load_mesh_scene(const std::string& mesh_body) {
   return load_scene_string(scene_with_mesh(mesh_body), kMeshDir + "mem.toml");
@@ -113,22 +123,11 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
   // A face with no indices: refused, naming it (assimp's triangulation aborted the process on a
   // mesh whose faces were all empty).
   const std::string empty_face_ply = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0\n";
-  try {
-    parse_mesh_file(empty_face_ply, "ply");
-    ADD_FAILURE() << "a PLY face of no indices loaded";
-  } catch (const MeshFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("face 0 of mesh 0 has no vertex indices"), std::string::npos) << e.what();
-  }
+  expect_refused(empty_face_ply, "ply", "face 0 of mesh 0 has no vertex indices");
   // A PLY header is checked against the format's grammar before assimp reads it (mangled lines
   // made its reader write past its buffers), naming the line; comments, obj_info, CRLF line ends
   // and blank lines are PLY.
-  try {
-    parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\npropertyformat binary_big_endian 1.0blue\nend_header\n0\n1\n2\n", "ply");
-    ADD_FAILURE() << "a mangled PLY header loaded";
-  } catch (const MeshFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("line 5 of the PLY header is not a PLY header line: 'propertyformat binary_big_endian 1.0blue'"),
-              std::string::npos) << e.what();
-  }
+  expect_refused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\npropertyformat binary_big_endian 1.0blue\nend_header\n0\n1\n2\n", "ply", "line 5 of the PLY header is not a PLY header line: 'propertyformat binary_big_endian 1.0blue'");
   for (const char* bad : {"ply\nformat ascii 2.0\n", "ply\nformat ascii 1.0\nproperty float x\n", "ply\nformat ascii 1.0\nelement vertex -3\n",
                           "ply\nformat ascii 1.0\nelement vertex 3\nproperty list uchar vertex_indices\n", "ply\nformat ascii 1.0\nelement vertex 3\nprope\n"})
     EXPECT_THROW(parse_mesh_file(std::string(bad) + "end_header\n0 0 0\n", "ply"), MeshFileError) << bad;
@@ -148,13 +147,7 @@ TEST(MeshFile, ParsesFromMemoryWhatTheFileHolds) {
 // The bound is the least size, so a file holding exactly what it declares loads, in either format.
 TEST(MeshFile, RefusesAPlyHeaderDeclaringMoreThanItsBodyHolds) {
   const std::string ascii_header = "ply\nformat ascii 1.0\nelement vertex 33333324\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-  try {
-    parse_mesh_file(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply");
-    ADD_FAILURE() << "a PLY declaring 33,333,324 vertices in 27 bytes loaded";
-  } catch (const MeshFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares 33333324 'vertex' elements, more than the 27 bytes"),
-              std::string::npos) << e.what();
-  }
+  expect_refused(ascii_header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "ply", "line 3 of the PLY header declares 33333324 'vertex' elements, more than the 27 bytes");
   // ASCII written as tightly as it can be: one-digit values, single separators, no newline at the end.
   const std::string tight = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2";
   EXPECT_EQ(parse_mesh_file(tight, "ply").mesh.triangles.size(), 1u);
@@ -172,20 +165,9 @@ TEST(MeshFile, RefusesAPlyHeaderDeclaringMoreThanItsBodyHolds) {
     return out;
   };
   EXPECT_EQ(parse_mesh_file(binary_ply(3), "ply").mesh.triangles.size(), 1u);
-  try {
-    parse_mesh_file(binary_ply(5), "ply");
-    ADD_FAILURE() << "a binary PLY declaring 5 vertices in the bytes of 3 loaded";
-  } catch (const MeshFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares 5 'vertex' elements"), std::string::npos) << e.what();
-  }
+  expect_refused(binary_ply(5), "ply", "line 3 of the PLY header declares 5 'vertex' elements");
   // An element with a count and no properties would need no bytes at all; it is refused.
-  try {
-    parse_mesh_file("ply\nformat ascii 1.0\nelement vertex 33333324\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", "ply");
-    ADD_FAILURE() << "a PLY element without properties loaded";
-  } catch (const MeshFileError& e) {
-    EXPECT_NE(std::string(e.what()).find("line 3 of the PLY header declares element 'vertex' without properties"), std::string::npos)
-        << e.what();
-  }
+  expect_refused("ply\nformat ascii 1.0\nelement vertex 33333324\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n", "ply", "line 3 of the PLY header declares element 'vertex' without properties");
 }
 
 TEST(MeshFile, RefusesWhatIsNotARegularFile) {
