@@ -19,7 +19,11 @@
 CLPT_INLINE Vec3 sample_cosine_hemisphere(Vec3 n, real u0, real u1) {
   const Float2 circle = unit_circle(u0);
   const real radius = clpt_sqrt(u1);
-  return to_world(v3(radius * circle.x, radius * circle.y, clpt_sqrt(fmax((real)0, (real)1 - u1))), n);
+  /* cos(theta) from the radius rather than from u1: two independent square roots side by side get
+   * paired by LLVM's SLP vectoriser under fast maths (<2 x float> sqrt), and PoCL's work-item
+   * vectoriser then keeps the whole lockstep megakernel scalar (docs/performance.md, "Presets"). */
+  const real cos_theta = clpt_sqrt(fmax((real)0, (real)1 - radius * radius));
+  return to_world(v3(radius * circle.x, radius * circle.y, cos_theta), n);
 }
 
 /* Direction around unit axis with pdf (exponent+1)/(2 pi) cos^exponent(alpha). */

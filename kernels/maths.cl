@@ -49,9 +49,8 @@ typedef float real;
 #endif
 /* CLPT_MATERIAL_BY_SELECT (kernel_options.cpp): the hit sphere's material is picked by selects
  * over the loop's spheres (path.cl, sphere_material) rather than gathered: with CLPT_NO_FAST_GATHER,
- * and in the lockstep megakernel that carries the hit sphere's centre (intersect.cl) with the
- * robust or double preset, where it measured 1.05-1.25x (docs/performance.md, "What limits the
- * speed"; the fast preset's kernel stops vectorising with it). */
+ * and in the lockstep megakernel that carries the hit sphere's centre (intersect.cl), where it
+ * measured 1.05-1.25x (docs/performance.md, "What limits the speed"). */
 #ifndef CLPT_MATERIAL_BY_SELECT
 #define CLPT_MATERIAL_BY_SELECT CLPT_NO_FAST_GATHER
 #endif

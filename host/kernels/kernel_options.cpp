@@ -251,8 +251,7 @@ bool hit_carries_sphere_centre(const KernelFeatures& features) {
 }
 
 bool picks_material_by_select(const KernelFeatures& features) {
-  return reads_spheres_by_select(features) ||
-         (hit_carries_sphere_centre(features) && features.precision != Precision::Fast);
+  return reads_spheres_by_select(features) || hit_carries_sphere_centre(features);
 }
 
 std::string kernel_build_options(const KernelFeatures& features) {
@@ -395,7 +394,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   o << "  hit sphere's material: "
     << (picks_material_by_select(features)
             ? "selects over the loop's spheres"
-            : hit_carries_sphere_centre(features) ? "indexed (the fast preset: selects stop its vectoriser)" : "indexed")
+            : "indexed")
     << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
