@@ -90,10 +90,24 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
     const bool blocked = false;
 #endif
     path_shade_light(&next, &shadow, blocked);
+    path = path_select(path.alive != 0, next, path);
+#elif defined(CLPT_SCATTER_DRAW_PAIRS) && CLPT_SCATTER_DRAW_PAIRS && CLPT_UNROLL_SCENE_LOOPS
+    /* Two segments per step, one draw for both (path.cl, scatter_draw): every live path of the
+     * group is at the same bounce, an even one here, as all start at 0 and each live path's
+     * segment adds one (a segment that does not scatter ends the path). Ended paths' lanes compute
+     * with their own state and are selected away. Only with the unrolled scene loops, the CPUs'
+     * shape: a forced lockstep kernel on a GPU (rolled loops) keeps one segment a step, whose
+     * registers two would raise (gfx906: 110 -> 127 VGPRs, scripts/gpu_compile.sh). */
+    const Uniform4 draw = scatter_draw(&params, path.pixel, path.sample, path.bounce);
+    path_shade_drawn(&next, path_intersect(&path, &scene, &params), &scene, &params, draw);
+    path = path_select(path.alive != 0, next, path);
+    next = path;
+    path_shade_drawn(&next, path_intersect(&path, &scene, &params), &scene, &params, draw);
+    path = path_select(path.alive != 0, next, path);
 #else
     path_shade(&next, path_intersect(&path, &scene, &params), &scene, &params);
-#endif
     path = path_select(path.alive != 0, next, path);
+#endif
     barrier(CLK_LOCAL_MEM_FENCE);
 #if CLPT_NO_FAST_GATHER
     {

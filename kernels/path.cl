@@ -370,15 +370,49 @@ CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
   return p;
 }
 
+/* CLPT_SCATTER_DRAW_PAIRS (the host's choice, kernel_options.cpp, scatter_draws_paired; the generic
+ * kernel reads GpuRenderParams.scatter_draw_pairs): where scattering reads only u0 and u1 of its
+ * draw (no glass, whose Fresnel choice reads u2, and no Russian roulette, which reads u3), one
+ * draw serves two bounces: bounce b scatters with the draw of dimension 1 + b / 2, its (u0, u1)
+ * for an even b and its (u2, u3) for an odd one. Otherwise bounce b has dimension 1 + b to
+ * itself. Either way the numbers depend on (key, pixel, sample, bounce) alone, in every form;
+ * the Philox words are independent, so the pairs are too. Why: Philox is about a fifth of the
+ * CPU's lockstep megakernel, whose live paths are all at the same bounce, so that loop evaluates
+ * each paired draw once for two segments (megakernel.cl; docs/performance.md, "What limits the
+ * speed"). */
+#ifdef CLPT_SCATTER_DRAW_PAIRS
+#define CLPT_SCATTER_PAIRED(params) ((void)(params), CLPT_SCATTER_DRAW_PAIRS)
+#else
+#define CLPT_SCATTER_PAIRED(params) ((params)->scatter_draw_pairs != 0u)
+#endif
+
+/* The draw the scattering at `bounce` takes its uniforms from (scatter_uniforms_of). */
+CLPT_INLINE Uniform4 scatter_draw(const GpuRenderParams* params, uint pixel, uint sample, uint bounce) {
+  const uint dimension = 1u + (CLPT_SCATTER_PAIRED(params) ? bounce >> 1 : bounce);
+  return sampler_uniform4(rng_key_of(params), params->sampler, pixel, sample, dimension);
+}
+
+/* The scattering's uniforms at `bounce` from its draw: the draw itself, or for the odd bounce of
+ * a paired draw its second pair in u0 and u1. */
+CLPT_INLINE Uniform4 scatter_uniforms_of(const GpuRenderParams* params, Uniform4 draw, uint bounce) {
+  const bool second = CLPT_SCATTER_PAIRED(params) && (bounce & 1u) != 0u;
+  Uniform4 u = draw;
+  u.u0 = second ? draw.u2 : draw.u0;
+  u.u1 = second ? draw.u3 : draw.u1;
+  return u;
+}
+
 /* One shading event: a miss ends the path (black background); an emitter adds its emission
  * (MIS-weighted under nee) and ends it (emitters do not reflect); past max_bounces the path ends;
  * otherwise, under nee, a shadow ray adds the light it finds, and the material scatters the path.
  * Written as selects over the cases, not branches, so that PoCL vectorises it.
  *
  * path_shade = path_shade_surface, shadow_query_blocked, path_shade_light, in that order; the
- * shadow ray's light is the last thing added to the radiance, so the split changes no sum. */
-CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
-                                    ShadowQuery* shadow) {
+ * shadow ray's light is the last thing added to the radiance, so the split changes no sum.
+ * path_shade_surface_drawn takes the scattering's draw from its caller: it must be
+ * scatter_draw(params, path->pixel, path->sample, path->bounce). */
+CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneBuffers* scene,
+                                          const GpuRenderParams* params, Uniform4 draw, ShadowQuery* shadow) {
   *shadow = no_shadow_query();
   path->segments += 1u;
   const bool missed = hit.sphere < 0 && hit.triangle < 0;
@@ -433,7 +467,7 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
 #endif
   path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
 
-  const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample, 1u + path->bounce);
+  const Uniform4 u = scatter_uniforms_of(params, draw, path->bounce);
   Vec3 weight;
   const Vec3 next = material_sample(&material, path->direction, normal, u, &weight);
   weight = v3_select(leaves_consistently(&surface, next), weight, v3_splat((real)0));
@@ -469,6 +503,12 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
   path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
 }
 
+CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
+                                    ShadowQuery* shadow) {
+  path_shade_surface_drawn(path, hit, scene, params, scatter_draw(params, path->pixel, path->sample, path->bounce),
+                           shadow);
+}
+
 /* Whether the hierarchy blocks the shadow ray of *q (false when it brings nothing, or with no
  * hierarchy). */
 CLPT_INLINE bool shadow_query_blocked(const ShadowQuery* q, const SceneBuffers* scene, const GpuRenderParams* params) {
@@ -487,10 +527,16 @@ CLPT_INLINE void path_shade_light(PathState* path, const ShadowQuery* q, bool bl
 #endif
 }
 
-CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
+/* path_shade with the scattering's draw from the caller (path_shade_surface_drawn's contract). */
+CLPT_INLINE void path_shade_drawn(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
+                                  Uniform4 draw) {
   ShadowQuery q;
-  path_shade_surface(path, hit, scene, params, &q);
+  path_shade_surface_drawn(path, hit, scene, params, draw, &q);
   path_shade_light(path, &q, shadow_query_blocked(&q, scene, params));
+}
+
+CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
+  path_shade_drawn(path, hit, scene, params, scatter_draw(params, path->pixel, path->sample, path->bounce));
 }
 
 #endif

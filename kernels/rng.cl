@@ -4,8 +4,9 @@
  * through sampler_uniform4(key, sampler, pixel, sample, dimension) (sampler.cl), which evaluates
  * Philox at a counter made of those, so the image does not depend on the device, the work-group
  * size, the pass split or the execution form. Dimension 0 is the camera sample, 1 + b the
- * scattering at bounce b, CLPT_DIM_LIGHT + b the light sample (light.cl), and CLPT_DIM_STRATA the
- * jitter sampler's per-16-sample strata shuffle.
+ * scattering at bounce b (1 + b / 2 where one draw serves two bounces: path.cl, scatter_draw),
+ * CLPT_DIM_LIGHT + b the light sample (light.cl), and CLPT_DIM_STRATA the jitter sampler's
+ * per-16-sample strata shuffle.
  * Written on scalar words (no uint4) so that PoCL can vectorise it across work-items. */
 #ifndef CLPT_RNG_CL
 #define CLPT_RNG_CL

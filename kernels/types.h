@@ -145,7 +145,7 @@ typedef struct GpuCamera {
   float pad2;
 } GpuCamera;
 
-/* Everything one pass needs besides the sphere and light buffers: 116 bytes, passed by value. */
+/* Everything one pass needs besides the sphere and light buffers: 120 bytes, passed by value. */
 typedef struct GpuRenderParams {
   GpuCamera camera;
   clpt_u32 width;            /* pixels */
@@ -166,6 +166,8 @@ typedef struct GpuRenderParams {
   clpt_u32 bvh_node_count;   /* entries in the node buffer; 0: no hierarchy (spheres in a loop) */
   clpt_u32 slotted;          /* 0: the launch's slot s is pixel pixel_begin + s from sample_begin; 1: it is
                                 the launch's GpuSampleSlot s (an adaptive pass, film.cl) */
+  clpt_u32 scatter_draw_pairs; /* 1: one draw serves the scattering of two bounces (path.cl, scatter_draw;
+                                  read by the generic kernel, fixed in a specialised one) */
 } GpuRenderParams;
 
 /* One slot of an adaptive pass (render/adaptive_sampling.h): a pixel and the index of the first of
@@ -234,6 +236,7 @@ typedef struct GpuPixelPass {
   X(GpuRenderParams, light_count)                                                                 \
   X(GpuRenderParams, bvh_node_count)                                                              \
   X(GpuRenderParams, slotted)                                                                     \
+  X(GpuRenderParams, scatter_draw_pairs)                                                          \
   X(GpuSampleSlot, pixel)                                                                         \
   X(GpuSampleSlot, sample_begin)                                                                  \
   X(GpuLight, cap_axis)                                                                           \
@@ -271,7 +274,7 @@ CLPT_CHECK_SIZE(GpuTriangleShading, 80)
 CLPT_CHECK_SIZE(GpuSphere, 96)
 CLPT_CHECK_SIZE(GpuLight, 48)
 CLPT_CHECK_SIZE(GpuCamera, 48)
-CLPT_CHECK_SIZE(GpuRenderParams, 116)
+CLPT_CHECK_SIZE(GpuRenderParams, 120)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
 #undef CLPT_CHECK_SIZE

@@ -36,7 +36,7 @@ TEST(StructLayout, HostMatchesDevice) {
   // The sizes the comments in types.h promise.
   EXPECT_EQ(sizeof(GpuSphere), 96u);
   EXPECT_EQ(sizeof(GpuCamera), 48u);
-  EXPECT_EQ(sizeof(GpuRenderParams), 116u);
+  EXPECT_EQ(sizeof(GpuRenderParams), 120u);
   EXPECT_EQ(sizeof(GpuSampleSlot), 8u);
   EXPECT_EQ(sizeof(GpuLight), 48u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);

@@ -254,6 +254,8 @@ bool picks_material_by_select(const KernelFeatures& features) {
   return reads_spheres_by_select(features) || hit_carries_sphere_centre(features);
 }
 
+bool scatter_draws_paired(const KernelFeatures& features) { return !features.glass && !features.russian_roulette; }
+
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
@@ -287,6 +289,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (reads_spheres_by_select(features)) o << " -DCLPT_NO_FAST_GATHER=1";
   if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
   if (picks_material_by_select(features) && !reads_spheres_by_select(features)) o << " -DCLPT_MATERIAL_BY_SELECT=1";
+  if (!features.generic) o << " -DCLPT_SCATTER_DRAW_PAIRS=" << (scatter_draws_paired(features) ? 1 : 0);
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -391,10 +394,16 @@ std::string explain_kernel_options(const KernelFeatures& features) {
             ? "carried through the sphere loop (the lockstep megakernel, every sphere in the unrolled loop)"
             : "read from the hit sphere (per-path or wavefront kernel, a rolled loop, a hierarchy, selects or the textbook intersection)")
     << "\n";
-  o << "  hit sphere's material: "
-    << (picks_material_by_select(features)
-            ? "selects over the loop's spheres"
-            : "indexed")
+  o << "  hit sphere's material: " << (picks_material_by_select(features) ? "selects over the loop's spheres" : "indexed")
+    << "\n";
+  o << "  scattering draws: "
+    << (features.generic ? std::string("as the scene's parameters say (one per bounce, or one per two without glass and Russian roulette)")
+        : scatter_draws_paired(features)
+            ? std::string("one per two bounces (no glass, no Russian roulette)") +
+                  (features.lockstep_group > 0 && !features.has_hierarchy() && features.unroll_scene_loops
+                       ? ", evaluated once for the lockstep loop's two segments"
+                       : "")
+            : std::string("one per bounce (glass or Russian roulette read a third or fourth uniform)"))
     << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();

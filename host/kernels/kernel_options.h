@@ -178,9 +178,15 @@ bool hit_carries_sphere_centre(const KernelFeatures& features);
 
 // Whether the hit sphere's material is picked by selects over the loop's spheres
 // (CLPT_MATERIAL_BY_SELECT): wherever its geometry is (reads_spheres_by_select), and where the
-// loop carries its centre with the robust or double preset (measured faster than the gathers on
-// an AMD Zen 4; with the fast preset the kernel stopped vectorising: docs/performance.md).
+// loop carries its centre (measured faster than the gathers on an AMD Zen 4: docs/performance.md).
 bool picks_material_by_select(const KernelFeatures& features);
+
+// Whether one draw serves the scattering of two bounces (CLPT_SCATTER_DRAW_PAIRS, path.cl's
+// scatter_draw): where scattering reads only two uniforms, i.e. no glass and no Russian roulette.
+// It changes which random numbers a path uses, so every form, loop and device of one render must
+// agree: a specialised kernel fixes it from these features, and the generic kernel reads
+// GpuRenderParams.scatter_draw_pairs, which make_params (render_plan.cpp) sets from the scene's.
+bool scatter_draws_paired(const KernelFeatures& features);
 
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);

@@ -79,6 +79,9 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
   p.rr_from = s.rr_from >= 0 ? static_cast<clpt_u32>(s.rr_from) : CLPT_RR_NEVER;
   p.light_count = static_cast<clpt_u32>(ds.lights.size());
   p.bvh_node_count = static_cast<clpt_u32>(ds.bvh.nodes.size());
+  // The scene's own features, whatever kernel runs: the generic kernel must draw what a
+  // specialised one fixes (the precision does not enter).
+  p.scatter_draw_pairs = scatter_draws_paired(features_for_scene(scene)) ? 1u : 0u;
   return p;
 }
 
