@@ -6,6 +6,8 @@
 #include <set>
 
 #include "render_test_util.h"
+#include "render/render_plan.h"
+#include "scene/device_scene.h"
 #include "tools/kernel_variants.h"
 #include "util/error.h"
 
@@ -152,6 +154,26 @@ TEST(KernelOptions, SphereReadsBySelectWhereTheCompilerHasNoFastGathers) {
   EXPECT_EQ(kernel_build_options(generic).find("CLPT_NO_FAST_GATHER"), std::string::npos);
   f.spheres_in_bvh = true;
   EXPECT_EQ(kernel_build_options(f).find("CLPT_NO_FAST_GATHER"), std::string::npos);
+}
+
+// One draw serves two bounces exactly where scattering reads two uniforms (path.cl,
+// scatter_draw): not with glass (u2) or Russian roulette (u3). The specialised kernel fixes the
+// rule and the render's parameters carry the same one for the generic kernel.
+TEST(KernelOptions, ScatterDrawsArePairedWithoutGlassAndRoulette) {
+  const auto paired = [](const Scene& scene) {
+    const bool fixed = scatter_draws_paired(features_for_scene(scene));
+    const std::string options = kernel_build_options(features_for_scene(scene));
+    EXPECT_NE(options.find(std::string(" -DCLPT_SCATTER_DRAW_PAIRS=") + (fixed ? "1" : "0")), std::string::npos);
+    EXPECT_EQ(make_params(scene, make_device_scene(scene, scene.settings.width, scene.settings.height)).scatter_draw_pairs, fixed ? 1u : 0u);
+    return fixed;
+  };
+  EXPECT_TRUE(paired(load_book_scene("diffuse")));
+  EXPECT_TRUE(paired(load_book_scene("specular")));  // Phong reads u0 and u1 only
+  EXPECT_FALSE(paired(load_book_scene("glass")));
+  Scene roulette = load_book_scene("diffuse");
+  roulette.settings.rr_from = 3;
+  EXPECT_FALSE(paired(roulette));
+  EXPECT_EQ(kernel_build_options(generic_features()).find("CLPT_SCATTER_DRAW_PAIRS"), std::string::npos);
 }
 
 }  // namespace
