@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every preset's kernels are vectorised across work-items by PoCL (docs/performance.md,
 # "Presets"; docs/design.md lists what stops it): each book scene, and one with a hierarchy, with
-# each estimator and preset
+# each estimator and preset, and the diffuse scene with Russian roulette,
 # is compiled from source with PoCL's vectoriser remarks on (POCL_VECTORIZER_REMARKS=1, a fresh
 # POCL_CACHE_DIR, --no-cache), and the remarks must show a vectorised work-item loop and none of
 # the three blockers this code has met: a vector-typed value (LLVM's SLP pairs, e.g. the double
@@ -28,6 +28,25 @@ if "$clpt" render scenes/diffuse.toml --explain 2>/dev/null | grep -q "hit spher
   echo "NOTE: PoCL compiles for LLVM CPU '$llvm_cpu', without fast gathers: only the robust preset on the book scenes is checked"
 fi
 failed=0
+# check_vectorised NAME SCENE [OPTIONS]: a 16x8, 1-sample render compiled from source with the
+# remarks on; fails (failed=1) without a vectorised work-item loop or with a blocker's remark.
+check_vectorised() {
+  local name=$1; shift
+  POCL_VECTORIZER_REMARKS=1 POCL_CACHE_DIR=$work/pocl-$name CLPT_CACHE_DIR=$work/clpt-cache \
+    "$clpt" render "$@" --no-cache --width 16 --height 8 --spp 1 --sampler jitter -q -o "$work/$name.pfm" \
+    > "$work/$name.log" 2>&1 || { echo "FAIL: $name did not render"; cat "$work/$name.log"; failed=1; return; }
+  # LLVM prints the remarks one after another, often on one line: one per line first.
+  sed 's/<unknown>:0:0: /\n/g' "$work/$name.log" > "$work/$name.remarks"
+  grep -q "vectorized loop (vectorization width: " "$work/$name.remarks" ||
+    { echo "FAIL: $name: no work-item loop was vectorised"; failed=1; }
+  local blocker
+  for blocker in "instruction return type cannot be vectorized" "call instruction cannot be vectorized" \
+                 "loop contains a switch statement"; do
+    if grep -q "$blocker" "$work/$name.remarks"; then
+      echo "FAIL: $name: \"$blocker\" (see $work/$name.remarks)"; failed=1
+    fi
+  done
+}
 # And a scene with a hierarchy (more spheres than the unrolled loop takes): the lockstep
 # megakernel keeps its traversals in regions of their own (docs/performance.md, "Traversal"), so
 # the loop and the shading around them must still vectorise.
@@ -39,23 +58,16 @@ for scene in diffuse specular glass "$work/hierarchy"; do
       if [[ $slow_gathers == 1 && ( $precision != robust || $scene == /* ) ]]; then
         echo "not checked on '$llvm_cpu': $name"; continue
       fi
-      POCL_VECTORIZER_REMARKS=1 POCL_CACHE_DIR=$work/pocl-$name CLPT_CACHE_DIR=$work/clpt-cache \
-        "$clpt" render "$([[ $scene == /* ]] && echo "$scene" || echo "scenes/$scene").toml" --estimator "$estimator" --precision "$precision" --no-cache \
-        --width 16 --height 8 --spp 1 --sampler jitter -q -o "$work/$name.pfm" > "$work/$name.log" 2>&1 ||
-        { echo "FAIL: $name did not render"; cat "$work/$name.log"; failed=1; continue; }
-      # LLVM prints the remarks one after another, often on one line: one per line first.
-      sed 's/<unknown>:0:0: /\n/g' "$work/$name.log" > "$work/$name.remarks"
-      grep -q "vectorized loop (vectorization width: " "$work/$name.remarks" ||
-        { echo "FAIL: $name: no work-item loop was vectorised"; failed=1; }
-      for blocker in "instruction return type cannot be vectorized" "call instruction cannot be vectorized" \
-                     "loop contains a switch statement"; do
-        if grep -q "$blocker" "$work/$name.remarks"; then
-          echo "FAIL: $name: \"$blocker\" (see $work/$name.remarks)"; failed=1
-        fi
-      done
+      check_vectorised "$name" "$([[ $scene == /* ]] && echo "$scene" || echo "scenes/$scene").toml" \
+        --estimator "$estimator" --precision "$precision"
     done
   done
 done
+# Russian roulette with the book estimator (its own uniform, u3, and no paired scattering draws:
+# path.cl), which ran scalar until 2026-12-03 (docs/performance.md, "What limits the speed").
+if [[ $slow_gathers == 0 ]]; then
+  check_vectorised diffuse.book.robust.roulette scenes/diffuse.toml --rr-from 3
+fi
 # --cpu-vector-bits 512 (kernels/cpu_tuning.h) must reach the vectoriser: 16 work-items per
 # instruction in some loop of the float presets' kernels, both forms. Only on an AVX-512 CPU
 # (elsewhere clpt refuses the option: test_kernel_variants).
