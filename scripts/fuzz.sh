@@ -43,9 +43,11 @@ failed=0
 # seeds join it; it keeps what earlier runs learnt) and reports inputs tried and findings; DICT
 # "-" for none.
 # first_frame_is_assimp LOG: the first stack frame after the last sanitizer or libFuzzer error
-# report that names assimp or clpt names assimp.
+# report that names assimp or clpt names assimp. A failed check of AddressSanitizer's allocator
+# ("AddressSanitizer: CHECK failed: asan_allocator.cpp", no "ERROR:") is such a report: heap
+# metadata overwritten, which only uninstrumented code (assimp) can do without a report of its own.
 first_frame_is_assimp() {
-  awk '/ERROR: (AddressSanitizer|libFuzzer|LeakSanitizer)/ {seen = 1; first = ""}
+  awk '/ERROR: (AddressSanitizer|libFuzzer|LeakSanitizer)|AddressSanitizer: CHECK failed/ {seen = 1; first = ""}
        seen && first == "" && /^ *#[0-9]+ / && /libassimp\.so|clpt::|fuzz_mesh_file\.cpp/ {
          first = ($0 ~ /libassimp\.so/) ? "assimp" : "clpt" }
        END {exit first == "assimp" ? 0 : 1}' "$1"
