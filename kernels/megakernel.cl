@@ -98,7 +98,7 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
      * with their own state and are selected away. Only with the unrolled scene loops, the CPUs'
      * shape: a forced lockstep kernel on a GPU (rolled loops) keeps one segment a step, whose
      * registers two would raise (gfx906: 110 -> 127 VGPRs, scripts/gpu_compile.sh). */
-    const Uniform4 draw = scatter_draw(&params, path.pixel, path.sample, path.bounce);
+    const Uniform4 draw = scatter_draw(&params, &path);
     path_shade_drawn(&next, path_intersect(&path, &scene, &params), &scene, &params, draw);
     path = path_select(path.alive != 0, next, path);
     next = path;

@@ -386,10 +386,11 @@ CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
 #define CLPT_SCATTER_PAIRED(params) ((params)->scatter_draw_pairs != 0u)
 #endif
 
-/* The draw the scattering at `bounce` takes its uniforms from (scatter_uniforms_of). */
-CLPT_INLINE Uniform4 scatter_draw(const GpuRenderParams* params, uint pixel, uint sample, uint bounce) {
-  const uint dimension = 1u + (CLPT_SCATTER_PAIRED(params) ? bounce >> 1 : bounce);
-  return sampler_uniform4(rng_key_of(params), params->sampler, pixel, sample, dimension);
+/* The draw the path's scattering at its current bounce takes its uniforms from
+ * (scatter_uniforms_of). */
+CLPT_INLINE Uniform4 scatter_draw(const GpuRenderParams* params, const PathState* path) {
+  const uint dimension = 1u + (CLPT_SCATTER_PAIRED(params) ? path->bounce >> 1 : path->bounce);
+  return sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample, dimension);
 }
 
 /* The scattering's uniforms at `bounce` from its draw: the draw itself, or for the odd bounce of
@@ -410,7 +411,7 @@ CLPT_INLINE Uniform4 scatter_uniforms_of(const GpuRenderParams* params, Uniform4
  * path_shade = path_shade_surface, shadow_query_blocked, path_shade_light, in that order; the
  * shadow ray's light is the last thing added to the radiance, so the split changes no sum.
  * path_shade_surface_drawn takes the scattering's draw from its caller: it must be
- * scatter_draw(params, path->pixel, path->sample, path->bounce). */
+ * scatter_draw(params, path). */
 CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneBuffers* scene,
                                           const GpuRenderParams* params, Uniform4 draw, ShadowQuery* shadow) {
   *shadow = no_shadow_query();
@@ -505,8 +506,7 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
 
 CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
                                     ShadowQuery* shadow) {
-  path_shade_surface_drawn(path, hit, scene, params, scatter_draw(params, path->pixel, path->sample, path->bounce),
-                           shadow);
+  path_shade_surface_drawn(path, hit, scene, params, scatter_draw(params, path), shadow);
 }
 
 /* Whether the hierarchy blocks the shadow ray of *q (false when it brings nothing, or with no
@@ -536,7 +536,7 @@ CLPT_INLINE void path_shade_drawn(PathState* path, Hit hit, const SceneBuffers* 
 }
 
 CLPT_INLINE void path_shade(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params) {
-  path_shade_drawn(path, hit, scene, params, scatter_draw(params, path->pixel, path->sample, path->bounce));
+  path_shade_drawn(path, hit, scene, params, scatter_draw(params, path));
 }
 
 #endif
