@@ -1,9 +1,50 @@
 #include "cl/cl_context.h"
 
+#include <cstdlib>
+
 #include "cl/cl_error.h"
 #include "cl/kernel_cache.h"
+#include "util/error.h"
+#include "util/large_pages.h"
 
 namespace clpt {
+namespace {
+
+// PoCL's CPU device keeps buffers in the process's own memory, as plain allocations.
+bool host_memory_is_device_memory(const DeviceInfo& device) { return device.is_pocl_cpu(); }
+
+void CL_CALLBACK free_host_memory(cl_mem, void* memory) { std::free(memory); }
+
+// A buffer whose memory clpt allocates on 2 MiB pages (util/large_pages.h) and hands to the
+// device with CL_MEM_USE_HOST_PTR, on a device whose buffers are host memory anyway. Why: every
+// first touch of a 4 KiB page is a fault (about 10 us in the VMs clpt is measured on), and a
+// render's launch buffers are touched afresh each time they grow; on large pages the W1 render
+// took 0.93 of the time (docs/performance.md, "Fixed costs"). The memory is freed by the
+// buffer's destructor callback, when the driver has let go of it, not when clpt releases it.
+cl_mem create_on_large_pages(DeviceContext& ctx, size_t bytes, cl_mem_flags flags) {
+  const size_t rounded = (bytes + kLargePageBytes - 1) / kLargePageBytes * kLargePageBytes;
+  void* memory = std::aligned_alloc(kLargePageBytes, rounded);
+  if (!memory) throw Error(ExitCode::DeviceError, ctx.where() + ": out of host memory for a buffer of " +
+                                                      std::to_string(bytes) + " bytes");
+  advise_large_pages(memory, rounded);
+  cl_mem mem = nullptr;
+  try {
+    mem = CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags | CL_MEM_USE_HOST_PTR, bytes, memory);
+  } catch (...) {
+    std::free(memory);
+    throw;
+  }
+  try {
+    CL_CALL(ctx.where(), clSetMemObjectDestructorCallback(mem, free_host_memory, memory));
+  } catch (...) {
+    clReleaseMemObject(mem);  // never used: the driver holds the memory no more
+    std::free(memory);
+    throw;
+  }
+  return mem;
+}
+
+}  // namespace
 
 Buffer::Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::string& label)
     : bytes_(bytes) {
@@ -13,7 +54,9 @@ Buffer::Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::
                     ctx.where() + " allows at most " + std::to_string(ctx.device().max_alloc_bytes) +
                     " per allocation");
   }
-  mem_ = MemHandle(CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags, bytes, nullptr));
+  mem_ = MemHandle(host_memory_is_device_memory(ctx.device()) && bytes >= kLargePageBytes
+                       ? create_on_large_pages(ctx, bytes, flags)
+                       : CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags, bytes, nullptr));
 }
 
 Kernel::Kernel(cl_program program, const std::string& name, const std::string& where)

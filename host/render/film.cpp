@@ -6,18 +6,20 @@
 #include <string>
 #include <utility>
 
+#include "util/large_pages.h"
+
 namespace clpt {
 
 Film::Film(int width, int height)
     : width_(width),
       height_(height),
-      sum_(size_t(width) * height * 3, 0.0),
-      sum_sq_(size_t(width) * height * 3, 0.0),
-      valid_(size_t(width) * height, 0.0),
-      half1_sum_(size_t(width) * height * 3, 0.0),
-      half1_sum_sq_(size_t(width) * height * 3, 0.0),
-      half1_valid_(size_t(width) * height, 0.0),
-      half1_samples_(size_t(width) * height, 0) {}
+      sum_(zeroed_large_vector<double>(size_t(width) * height * 3)),
+      sum_sq_(zeroed_large_vector<double>(size_t(width) * height * 3)),
+      valid_(zeroed_large_vector<double>(size_t(width) * height)),
+      half1_sum_(zeroed_large_vector<double>(size_t(width) * height * 3)),
+      half1_sum_sq_(zeroed_large_vector<double>(size_t(width) * height * 3)),
+      half1_valid_(zeroed_large_vector<double>(size_t(width) * height)),
+      half1_samples_(zeroed_large_vector<uint32_t>(size_t(width) * height)) {}
 
 void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples,
                     const std::vector<GpuSampleSlot>* slots, int half) {

@@ -1,0 +1,67 @@
+// Host arrays and device buffers on large pages (util/large_pages.h, cl_context.cpp): the same
+// contents as plain allocations. The buffers' memory is freed by their destructor callback, which
+// the ASan build of these tests (scripts/sanitize.sh) would report as a leak if it never ran.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "device_test_util.h"
+#include "util/large_pages.h"
+
+namespace clpt::test {
+namespace {
+
+TEST(LargePages, ZeroedVectorIsValueInitialised) {
+  for (size_t n : {size_t(0), size_t(1), size_t(1000), 3 * kLargePageBytes / sizeof(double) + 7}) {
+    const std::vector<double> v = zeroed_large_vector<double>(n);
+    ASSERT_EQ(v.size(), n);
+    EXPECT_TRUE(std::all_of(v.begin(), v.end(), [](double x) { return x == 0.0; })) << n << " elements";
+  }
+  const std::vector<uint32_t> counts = zeroed_large_vector<uint32_t>(kLargePageBytes);
+  EXPECT_EQ(std::count(counts.begin(), counts.end(), 0u), long(counts.size()));
+}
+
+std::vector<cl_uint4> philox_on_device(const std::vector<cl_uint4>& counters) {
+  Kernel kernel(test_program("probe_stages.cl"), "probe_philox", test_device().where());
+  Buffer in = upload(counters);
+  Buffer out(test_device(), counters.size() * sizeof(cl_uint4), CL_MEM_WRITE_ONLY, "out");
+  kernel.set_arg(0, in);
+  kernel.set_arg(1, cl_uint(7));
+  kernel.set_arg(2, cl_uint(11));
+  kernel.set_arg(3, out);
+  test_device().launch(kernel, counters.size(), 0, "probe_philox");
+  return download<cl_uint4>(out, counters.size());
+}
+
+// A kernel reads and writes buffers of several large pages (on PoCL's CPU device clpt's own
+// memory, elsewhere the driver's) as it does small ones: 3 MiB of counters in one launch give the
+// bits of the same counters in launches whose buffers are 16 KiB.
+TEST(Buffers, LargeBuffersHoldWhatSmallOnesDo) {
+  const size_t count = (kLargePageBytes + kLargePageBytes / 2) / sizeof(cl_uint4);
+  std::vector<cl_uint4> counters(count);
+  for (size_t i = 0; i < count; ++i) counters[i] = cl_uint4{{cl_uint(i), cl_uint(i * 7), 3u, cl_uint(count - i)}};
+  const std::vector<cl_uint4> whole = philox_on_device(counters);
+  const size_t batch = 1024;
+  for (size_t begin = 0; begin < count; begin += batch * 37) {  // every 37th batch: a spread sample
+    const size_t end = std::min(count, begin + batch);
+    const std::vector<cl_uint4> part =
+        philox_on_device(std::vector<cl_uint4>(counters.begin() + long(begin), counters.begin() + long(end)));
+    for (size_t i = begin; i < end; ++i)
+      for (int w = 0; w < 4; ++w) ASSERT_EQ(whole[i].s[w], part[i - begin].s[w]) << "counter " << i << " word " << w;
+  }
+}
+
+// Buffers that replace one another, as a render's launch buffers do when a launch grows.
+TEST(Buffers, ReplacedLargeBuffersKeepTheirContents) {
+  Buffer b;
+  for (size_t pages = 1; pages <= 3; ++pages) {
+    std::vector<cl_uint> data(pages * kLargePageBytes / sizeof(cl_uint));
+    for (size_t i = 0; i < data.size(); ++i) data[i] = cl_uint(i * 2654435761u + pages);
+    b = Buffer(test_device(), data.size() * sizeof(cl_uint), CL_MEM_READ_WRITE, "replaced");
+    test_device().write(b, data.data(), data.size() * sizeof(cl_uint));
+    EXPECT_EQ(download<cl_uint>(b, data.size()), data) << pages << " pages";
+  }
+}
+
+}  // namespace
+}  // namespace clpt::test
