@@ -5,9 +5,12 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
+#include <algorithm>
 #include <exception>
 #include <map>
+#include <thread>
 
 namespace clpt {
 namespace {
@@ -22,6 +25,17 @@ bool compression_from_name(const std::string& name, Imf::Compression& out) {
   if (it == kNames.end()) return false;
   out = it->second;
   return true;
+}
+
+// The cores OpenEXR's global thread pool gets, set up once (at most 8: a 640x480 image is 30
+// blocks).
+int exr_threads() {
+  static const int threads = [] {
+    const int n = std::clamp(int(std::thread::hardware_concurrency()), 1, 8);
+    if (n > 1) Imf::setGlobalThreadCount(n);
+    return n > 1 ? n : 0;
+  }();
+  return threads;
 }
 
 }  // namespace
@@ -52,8 +66,11 @@ std::string write_exr(const std::string& path, const ImageToWrite& image) {
       header.channels().insert(image.channels[c], Imf::Channel(Imf::FLOAT));
       frame.insert(image.channels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
     }
-    // One thread: the render's PNG is compressed beside it (image_io.cpp), on the other core.
-    Imf::OutputFile file(path.c_str(), header, /*numThreads=*/0);
+    // Its blocks of 16 lines are compressed on every core: the EXR's zlib is most of the time of
+    // writing a render (the PNG beside it, image_io.cpp, is a quarter of that), so the PNG and
+    // the EXR's blocks share the cores (docs/performance.md, "Fixed costs").
+    const int threads = exr_threads();
+    Imf::OutputFile file(path.c_str(), header, threads);
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
   } catch (const std::exception& e) {
