@@ -61,8 +61,8 @@ TEST(Launches, ResumedRenderEqualsStraightRender) {
     ASSERT_EQ(resumed.samples_per_pixel(), 40u);
     EXPECT_EQ(resumed.total_samples(), straight.total_samples());
     EXPECT_EQ(resumed.valid_counts(), straight.valid_counts());
-    const std::vector<double>& a = resumed.sums();
-    const std::vector<double>& b = straight.sums();
+    const auto& a = resumed.sums();
+    const auto& b = straight.sums();
     for (size_t i = 0; i < a.size(); ++i)
       ASSERT_NEAR(a[i], b[i], 1e-5 * std::max(std::abs(b[i]), 1e-3)) << "value " << i;
   }

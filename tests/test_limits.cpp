@@ -239,7 +239,7 @@ TEST_F(Checkpoint, ReadsVersion2FilesAsNonAdaptive) {
   downgrade_checkpoint(path_, kVersion3Bytes, 2);
   const Film back = load_checkpoint(path_, scene);
   EXPECT_EQ(back.half_samples_per_pixel(1), 3u);
-  EXPECT_EQ(back.half1_samples(), std::vector<uint32_t>(12, 3u));
+  EXPECT_EQ(back.half1_samples(), LargeVector<uint32_t>(12, 3u));
   EXPECT_EQ(back.half1_sums(), film.half1_sums());
   EXPECT_NE(error_of([&] { load_checkpoint(path_, scene, true); }).second.find("adaptively"), std::string::npos);
 }

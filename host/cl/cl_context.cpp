@@ -22,11 +22,9 @@ void CL_CALLBACK free_host_memory(cl_mem, void* memory) { std::free(memory); }
 // took 0.93 of the time (docs/performance.md, "Fixed costs"). The memory is freed by the
 // buffer's destructor callback, when the driver has let go of it, not when clpt releases it.
 cl_mem create_on_large_pages(DeviceContext& ctx, size_t bytes, cl_mem_flags flags) {
-  const size_t rounded = (bytes + kLargePageBytes - 1) / kLargePageBytes * kLargePageBytes;
-  void* memory = std::aligned_alloc(kLargePageBytes, rounded);
+  void* memory = allocate_on_large_pages(bytes);
   if (!memory) throw Error(ExitCode::DeviceError, ctx.where() + ": out of host memory for a buffer of " +
                                                       std::to_string(bytes) + " bytes");
-  advise_large_pages(memory, rounded);
   cl_mem mem = nullptr;
   try {
     mem = CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags | CL_MEM_USE_HOST_PTR, bytes, memory);

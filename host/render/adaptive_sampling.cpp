@@ -30,12 +30,12 @@ std::optional<AdaptiveRound> adaptive_round(const Film& film, uint64_t stop_spp,
 std::vector<double> adaptive_weights(const Film& film) {
   const int w = film.width(), h = film.height();
   const size_t pixels = film.pixel_count();
-  const std::vector<double>& sum = film.sums();
-  const std::vector<double>& sum_sq = film.sums_of_squares();
-  const std::vector<double>& valid = film.valid_counts();
-  const std::vector<double>& sum1 = film.half1_sums();
-  const std::vector<double>& sum_sq1 = film.half1_sums_of_squares();
-  const std::vector<double>& valid1 = film.half1_valid_counts();
+  const auto& sum = film.sums();
+  const auto& sum_sq = film.sums_of_squares();
+  const auto& valid = film.valid_counts();
+  const auto& sum1 = film.half1_sums();
+  const auto& sum_sq1 = film.half1_sums_of_squares();
+  const auto& valid1 = film.half1_valid_counts();
   // Half 0's per-sample variance per pixel, the mean over channels; -1: fewer than 2 samples.
   std::vector<double> variance(pixels, -1.0);
   for (size_t p = 0; p < pixels; ++p) {
@@ -116,7 +116,7 @@ std::vector<GpuSampleSlot> adaptive_pass_slots(const Film& film, const std::vect
                                                uint64_t first, uint64_t count) {
   std::vector<GpuSampleSlot> slots;
   slots.reserve(size_t(count));
-  const std::vector<uint32_t>& taken = film.half1_samples();
+  const auto& taken = film.half1_samples();
   uint64_t at = 0;  // the table's index of pixel p's first slot
   for (size_t p = 0; p < counts.size() && slots.size() < count; at += counts[p], ++p) {
     if (at + counts[p] <= first) continue;

@@ -70,7 +70,7 @@ bool get_header(std::istream& in, Header& h) {
   return bool(in);
 }
 
-void put_doubles(std::ostream& out, const std::vector<double>& values) {
+void put_doubles(std::ostream& out, const LargeVector<double>& values) {
   out.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(double)));
 }
 

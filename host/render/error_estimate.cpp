@@ -10,10 +10,10 @@ ErrorEstimate estimate_error(const Film& film) {
   e.half_spp[0] = film.half_samples_per_pixel(0);
   e.half_spp[1] = film.half_samples_per_pixel(1);
   if (!film.between_passes() || e.half_spp[0] == 0 || e.half_spp[1] == 0) return e;
-  const std::vector<double>& sum = film.sums();
-  const std::vector<double>& valid = film.valid_counts();
-  const std::vector<double>& sum1 = film.half1_sums();
-  const std::vector<double>& valid1 = film.half1_valid_counts();
+  const auto& sum = film.sums();
+  const auto& valid = film.valid_counts();
+  const auto& sum1 = film.half1_sums();
+  const auto& valid1 = film.half1_valid_counts();
   double mean_sum = 0, term_sum = 0, term_sq_sum = 0;
   size_t pixels_with_samples = 0, terms = 0;
   for (size_t p = 0; p < valid.size(); ++p) {

@@ -6,20 +6,18 @@
 #include <string>
 #include <utility>
 
-#include "util/large_pages.h"
-
 namespace clpt {
 
 Film::Film(int width, int height)
     : width_(width),
       height_(height),
-      sum_(zeroed_large_vector<double>(size_t(width) * height * 3)),
-      sum_sq_(zeroed_large_vector<double>(size_t(width) * height * 3)),
-      valid_(zeroed_large_vector<double>(size_t(width) * height)),
-      half1_sum_(zeroed_large_vector<double>(size_t(width) * height * 3)),
-      half1_sum_sq_(zeroed_large_vector<double>(size_t(width) * height * 3)),
-      half1_valid_(zeroed_large_vector<double>(size_t(width) * height)),
-      half1_samples_(zeroed_large_vector<uint32_t>(size_t(width) * height)) {}
+      sum_(size_t(width) * height * 3),
+      sum_sq_(size_t(width) * height * 3),
+      valid_(size_t(width) * height),
+      half1_sum_(size_t(width) * height * 3),
+      half1_sum_sq_(size_t(width) * height * 3),
+      half1_valid_(size_t(width) * height),
+      half1_samples_(size_t(width) * height) {}
 
 void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples,
                     const std::vector<GpuSampleSlot>* slots, int half) {
@@ -86,9 +84,9 @@ Film Film::restore(int width, int height, std::vector<double> sum, std::vector<d
     throw std::invalid_argument("Film::restore: arrays do not match the image size");
   film.width_ = width;
   film.height_ = height;
-  film.sum_ = std::move(sum);
-  film.sum_sq_ = std::move(sum_sq);
-  film.valid_ = std::move(valid);
+  film.sum_.assign(sum.begin(), sum.end());
+  film.sum_sq_.assign(sum_sq.begin(), sum_sq.end());
+  film.valid_.assign(valid.begin(), valid.end());
   film.samples_per_pixel_ = totals.samples_per_pixel;
   film.total_samples_ = totals.total_samples;
   film.total_segments_ = totals.total_segments;
@@ -113,10 +111,10 @@ void Film::restore_halves(std::vector<double> half1_sum, std::vector<double> hal
       half1_samples.size() != valid_.size() || half1_spp > samples_per_pixel_ ||
       (pixel_count() && total / pixel_count() != half1_spp))
     throw std::invalid_argument("Film::restore_halves: half-film does not match the film");
-  half1_sum_ = std::move(half1_sum);
-  half1_sum_sq_ = std::move(half1_sum_sq);
-  half1_valid_ = std::move(half1_valid);
-  half1_samples_ = std::move(half1_samples);
+  half1_sum_.assign(half1_sum.begin(), half1_sum.end());
+  half1_sum_sq_.assign(half1_sum_sq.begin(), half1_sum_sq.end());
+  half1_valid_.assign(half1_valid.begin(), half1_valid.end());
+  half1_samples_.assign(half1_samples.begin(), half1_samples.end());
   half1_total_ = total;
   half_spp_[0] = samples_per_pixel_ - half1_spp;
   update_half1_spp();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "kernels/types.h"
+#include "util/large_pages.h"
 
 namespace clpt {
 
@@ -72,10 +73,10 @@ class Film {
   // that half is full (pass_schedule.h, half0_end).
   uint64_t half_samples_per_pixel(int half) const { return half_spp_[half & 1]; }
   int next_half() const { return half_spp_[1] < half_spp_[0] ? 1 : 0; }
-  const std::vector<double>& half1_sums() const { return half1_sum_; }
-  const std::vector<double>& half1_sums_of_squares() const { return half1_sum_sq_; }
-  const std::vector<double>& half1_valid_counts() const { return half1_valid_; }
-  const std::vector<uint32_t>& half1_samples() const { return half1_samples_; }
+  const LargeVector<double>& half1_sums() const { return half1_sum_; }
+  const LargeVector<double>& half1_sums_of_squares() const { return half1_sum_sq_; }
+  const LargeVector<double>& half1_valid_counts() const { return half1_valid_; }
+  const LargeVector<uint32_t>& half1_samples() const { return half1_samples_; }
   uint64_t half1_total_samples() const { return half1_total_; }
 
   // The accumulated state, for checkpoints (render/checkpoint.h). Sums are RGB interleaved per
@@ -83,9 +84,9 @@ class Film {
   struct Totals {
     uint64_t samples_per_pixel = 0, total_samples = 0, total_segments = 0, dropped_samples = 0;
   };
-  const std::vector<double>& sums() const { return sum_; }
-  const std::vector<double>& sums_of_squares() const { return sum_sq_; }
-  const std::vector<double>& valid_counts() const { return valid_; }
+  const LargeVector<double>& sums() const { return sum_; }
+  const LargeVector<double>& sums_of_squares() const { return sum_sq_; }
+  const LargeVector<double>& valid_counts() const { return valid_; }
   Totals totals() const;
   // A film between passes with the given state; throws std::invalid_argument on sizes that do
   // not match width x height.
@@ -108,13 +109,13 @@ class Film {
   void update_half1_spp();
 
   int width_, height_;
-  std::vector<double> sum_;     // 3 per pixel
-  std::vector<double> sum_sq_;  // 3 per pixel
-  std::vector<double> valid_;   // valid samples per pixel
-  std::vector<double> half1_sum_;    // 3 per pixel: sums of the passes of half 1
-  std::vector<double> half1_sum_sq_;  // 3 per pixel: sums of squares of the passes of half 1
-  std::vector<double> half1_valid_;  // valid samples per pixel in half 1
-  std::vector<uint32_t> half1_samples_;  // samples per pixel in half 1, valid or not
+  LargeVector<double> sum_;     // 3 per pixel
+  LargeVector<double> sum_sq_;  // 3 per pixel
+  LargeVector<double> valid_;   // valid samples per pixel
+  LargeVector<double> half1_sum_;    // 3 per pixel: sums of the passes of half 1
+  LargeVector<double> half1_sum_sq_;  // 3 per pixel: sums of squares of the passes of half 1
+  LargeVector<double> half1_valid_;  // valid samples per pixel in half 1
+  LargeVector<uint32_t> half1_samples_;  // samples per pixel in half 1, valid or not
   uint64_t half1_total_ = 0;             // their sum over pixels
   uint64_t half_spp_[2] = {0, 0};    // samples per pixel of each half's whole passes
   uint64_t samples_per_pixel_ = 0;

@@ -1,6 +1,6 @@
 #include "util/large_pages.h"
 
-#include <cstdint>
+#include <cstdlib>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -8,17 +8,15 @@
 
 namespace clpt {
 
-void advise_large_pages(void* data, size_t bytes) {
+void* allocate_on_large_pages(size_t bytes) {
+  const size_t rounded = (bytes + kLargePageBytes - 1) / kLargePageBytes * kLargePageBytes;
+  if (rounded < bytes) return nullptr;  // wrapped
+  void* memory = std::aligned_alloc(kLargePageBytes, rounded == 0 ? kLargePageBytes : rounded);
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  constexpr uintptr_t kPage = kLargePageBytes;
-  const uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kPage - 1) & ~(kPage - 1);
-  const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kPage - 1);
-  if (data == nullptr || end <= begin) return;  // no whole huge page inside
-  (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-  (void)data;
-  (void)bytes;
+  // Advice only: harmless where the kernel has no such pages or declines.
+  if (memory) (void)madvise(memory, rounded == 0 ? kLargePageBytes : rounded, MADV_HUGEPAGE);
 #endif
+  return memory;
 }
 
 }  // namespace clpt
