@@ -50,7 +50,8 @@ using EventHandle = ClHandle<cl_event, clReleaseEvent>;
 class DeviceContext;
 class KernelCache;
 
-// A device buffer of `bytes` bytes.
+// A device buffer of `bytes` bytes. On PoCL's CPU device one of 2 MiB or more lives in memory clpt
+// allocates on large pages (util/large_pages.h), freed when the driver releases the buffer.
 class Buffer {
  public:
   Buffer() = default;
