@@ -49,6 +49,11 @@ std::vector<Out> run_probe(const char* kernel_name, size_t count, const Args&...
   return run_probe_built<Out>("-cl-std=CL1.2", kernel_name, count, args...);
 }
 
+// Philox4x32-10 of each counter with key (k0, k1) on the test device (probe_philox).
+inline std::vector<cl_uint4> run_philox(const std::vector<cl_uint4>& counters, cl_uint k0, cl_uint k1) {
+  return run_probe<cl_uint4>("probe_philox", counters.size(), upload(counters), k0, k1);
+}
+
 // Directory of the source tree (for scenes and references).
 std::string source_dir();
 

@@ -27,18 +27,6 @@ TEST(LargePages, VectorsHoldWhatPlainOnesDo) {
   }
 }
 
-std::vector<cl_uint4> philox_on_device(const std::vector<cl_uint4>& counters) {
-  Kernel kernel(test_program("probe_stages.cl"), "probe_philox", test_device().where());
-  Buffer in = upload(counters);
-  Buffer out(test_device(), counters.size() * sizeof(cl_uint4), CL_MEM_WRITE_ONLY, "out");
-  kernel.set_arg(0, in);
-  kernel.set_arg(1, cl_uint(7));
-  kernel.set_arg(2, cl_uint(11));
-  kernel.set_arg(3, out);
-  test_device().launch(kernel, counters.size(), 0, "probe_philox");
-  return download<cl_uint4>(out, counters.size());
-}
-
 // A kernel reads and writes buffers of several large pages (on PoCL's CPU device clpt's own
 // memory, elsewhere the driver's) as it does small ones: 3 MiB of counters in one launch give the
 // bits of the same counters in launches whose buffers are 16 KiB.
@@ -46,12 +34,12 @@ TEST(Buffers, LargeBuffersHoldWhatSmallOnesDo) {
   const size_t count = (kLargePageBytes + kLargePageBytes / 2) / sizeof(cl_uint4);
   std::vector<cl_uint4> counters(count);
   for (size_t i = 0; i < count; ++i) counters[i] = cl_uint4{{cl_uint(i), cl_uint(i * 7), 3u, cl_uint(count - i)}};
-  const std::vector<cl_uint4> whole = philox_on_device(counters);
+  const std::vector<cl_uint4> whole = run_philox(counters, 7, 11);
   const size_t batch = 1024;
   for (size_t begin = 0; begin < count; begin += batch * 37) {  // every 37th batch: a spread sample
     const size_t end = std::min(count, begin + batch);
     const std::vector<cl_uint4> part =
-        philox_on_device(std::vector<cl_uint4>(counters.begin() + long(begin), counters.begin() + long(end)));
+        run_philox(std::vector<cl_uint4>(counters.begin() + long(begin), counters.begin() + long(end)), 7, 11);
     for (size_t i = begin; i < end; ++i)
       for (int w = 0; w < 4; ++w) ASSERT_EQ(whole[i].s[w], part[i - begin].s[w]) << "counter " << i << " word " << w;
   }

@@ -6,18 +6,6 @@
 namespace clpt::test {
 namespace {
 
-std::vector<cl_uint4> run_philox(const std::vector<cl_uint4>& counters, cl_uint k0, cl_uint k1) {
-  Kernel kernel(test_program("probe_stages.cl"), "probe_philox", test_device().where());
-  Buffer in = upload(counters);
-  Buffer out(test_device(), counters.size() * sizeof(cl_uint4), CL_MEM_WRITE_ONLY, "out");
-  kernel.set_arg(0, in);
-  kernel.set_arg(1, k0);
-  kernel.set_arg(2, k1);
-  kernel.set_arg(3, out);
-  test_device().launch(kernel, counters.size(), 0, "probe_philox");
-  return download<cl_uint4>(out, counters.size());
-}
-
 cl_uint4 u4(cl_uint a, cl_uint b, cl_uint c, cl_uint d) {
   cl_uint4 v;
   v.s[0] = a, v.s[1] = b, v.s[2] = c, v.s[3] = d;

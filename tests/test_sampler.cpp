@@ -143,17 +143,9 @@ TEST(SobolGridSampler, VisitsEachGridPositionOncePerSixteenSamples) {
 // The jitter and grid samplers draw Philox4x32-10 at counter (pixel, sample, dimension, 0), top 24
 // bits of each word: the numbers every jitter image was made with before the Sobol sampler.
 TEST(JitterSampler, DrawsThePhiloxNumbers) {
-  Kernel philox(test_program("probe_stages.cl"), "probe_philox", test_device().where());
   std::vector<cl_uint4> counters;
   for (cl_uint i = 0; i < 16; ++i) counters.push_back(cl_uint4{{77u, i, 5u, 0u}});
-  Buffer in = upload(counters);
-  Buffer out(test_device(), counters.size() * sizeof(cl_uint4), CL_MEM_WRITE_ONLY, "out");
-  philox.set_arg(0, in);
-  philox.set_arg(1, cl_uint(7));
-  philox.set_arg(2, cl_uint(0));
-  philox.set_arg(3, out);
-  test_device().launch(philox, counters.size(), 0, "probe_philox");
-  const auto bits = download<cl_uint4>(out, counters.size());
+  const auto bits = run_philox(counters, 7, 0);
   for (cl_uint sampler : {CLPT_SAMPLER_JITTER, CLPT_SAMPLER_GRID}) {
     const auto u = draw(sampler, 77, 5, 0, counters.size());
     for (size_t i = 0; i < counters.size(); ++i)
