@@ -18,9 +18,10 @@ void CL_CALLBACK free_host_memory(cl_mem, void* memory) { std::free(memory); }
 // A buffer whose memory clpt allocates on 2 MiB pages (util/large_pages.h) and hands to the
 // device with CL_MEM_USE_HOST_PTR, on a device whose buffers are host memory anyway. Why: every
 // first touch of a 4 KiB page is a fault (about 10 us in the VMs clpt is measured on), and a
-// render's launch buffers are touched afresh each time they grow; on large pages the W1 render
-// took 0.93 of the time (docs/performance.md, "Fixed costs"). The memory is freed by the
-// buffer's destructor callback, when the driver has let go of it, not when clpt releases it.
+// render's launch buffers are touched afresh each time they grow; with these buffers on large
+// pages the W1 render took 0.957 of the wall time (docs/performance.md, "Fixed costs"). The
+// memory is freed by the buffer's destructor callback, when the driver has let go of it, not
+// when clpt releases it.
 cl_mem create_on_large_pages(DeviceContext& ctx, size_t bytes, cl_mem_flags flags) {
   void* memory = allocate_on_large_pages(bytes);
   if (!memory) throw Error(ExitCode::DeviceError, ctx.where() + ": out of host memory for a buffer of " +
