@@ -9,7 +9,6 @@
 #define CLPT_FILM_CL
 
 #include "types.h"
-#include "cpu_tuning.h"
 #include "maths.cl"
 
 /* Sums of a set of samples of one pixel: radiance and squared radiance per channel, in `real`. */
@@ -123,7 +122,7 @@ CLPT_INLINE void film_add_sample(PixelAccumulator* total, RadianceSums* block, _
 
 /* One work-item per slot of the launch (a pixel, or an adaptive pass's slot): its samples summed in
  * sample order, so the sums do not depend on which form traced them or in what order. */
-CLPT_KERNEL void film_sum_jobs(const GpuRenderParams params, __global const float* results,
+__kernel void film_sum_jobs(const GpuRenderParams params, __global const float* results,
                             __global GpuPixelPass* pass) {
   const uint local_pixel = (uint)get_global_id(0);
   if (local_pixel >= params.pixel_count) return;

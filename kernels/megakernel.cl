@@ -29,7 +29,7 @@
  * job 0 and store nothing. The barriers around alive_of keep its store out of the shading region:
  * an address computed once and kept across a barrier becomes a 64-bit value in that region, which
  * halves the width PoCL vectorises it with. */
-CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
+__kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading,
                            const GpuRenderParams params, __global const GpuSampleSlot* slots,
@@ -143,7 +143,7 @@ CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const 
   if (job_done < jobs) job_result_store(results, job_done, jobs, path.radiance, path.segments);
 }
 #else
-CLPT_KERNEL void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
+__kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading,
                            const GpuRenderParams params, __global const GpuSampleSlot* slots,

@@ -46,7 +46,7 @@ CLPT_INLINE void path_store(uint slot, uint job_index, const PathState* p CLPT_S
 }
 
 /* Starts jobs job_begin + i in slots slot_begin + i, for i < count. */
-CLPT_KERNEL void wf_generate(const GpuRenderParams params, __global const GpuSampleSlot* sample_slots, uint job_begin,
+__kernel void wf_generate(const GpuRenderParams params, __global const GpuSampleSlot* sample_slots, uint job_begin,
                           uint slot_begin, uint count CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
@@ -57,7 +57,7 @@ CLPT_KERNEL void wf_generate(const GpuRenderParams params, __global const GpuSam
 }
 
 /* Takes every scene buffer, as wf_shade does (the host binds them alike); reads only geometry. */
-CLPT_KERNEL void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
+__kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
                            __global const GpuSampleSlot* sample_slots, uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
@@ -87,7 +87,7 @@ CLPT_KERNEL void wf_intersect(__global const GpuSphere* spheres, __global const 
 #ifndef CLPT_WAVEFRONT_GROUP
 #define CLPT_WAVEFRONT_GROUP 1024
 #endif
-CLPT_KERNEL void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
+__kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                        __global const GpuTriangleShading* triangle_shading, const GpuRenderParams params,
                        __global const GpuSampleSlot* sample_slots, uint count, __global float* results,

@@ -5,6 +5,7 @@
 
 #include <set>
 
+#include "cl/pocl_vectoriser.h"
 #include "render_test_util.h"
 #include "render/render_plan.h"
 #include "scene/device_scene.h"
@@ -64,8 +65,9 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
   }
 }
 
-// --cpu-vector-bits: auto and 256 leave the compiler's width; 512 tunes the kernels for a CPU
-// without a 256-bit preference (kernels/cpu_tuning.h), and only for PoCL on an x86 CPU with AVX-512.
+// --cpu-vector-bits: 256 leaves the width to LLVM's cost model; 512, and auto where 512 can be
+// had, set PoCL's vectoriser to 16 lanes (cl/pocl_vectoriser.h): only PoCL on an x86 CPU with
+// AVX-512. Elsewhere auto stays with the compiler and 512 is refused.
 TEST(KernelOptions, CpuVectorBits512IsRefusedWhereTheDeviceCannotTakeIt) {
   DeviceInfo gpu;
   gpu.name = "some GPU";
@@ -79,10 +81,10 @@ TEST(KernelOptions, CpuVectorBits512IsRefusedWhereTheDeviceCannotTakeIt) {
   for (const DeviceInfo& d : {gpu, simulator}) {
     SCOPED_TRACE(d.platform_name);
     EXPECT_FALSE(device_takes_512_bit_vectors(d));
-    EXPECT_EQ(tune_cpu_for(CpuVectorBits::Auto, d), "");
-    EXPECT_EQ(tune_cpu_for(CpuVectorBits::Bits256, d), "");
+    EXPECT_EQ(cpu_vector_lanes_for(CpuVectorBits::Auto, d), 0u);
+    EXPECT_EQ(cpu_vector_lanes_for(CpuVectorBits::Bits256, d), 0u);
     try {
-      tune_cpu_for(CpuVectorBits::Bits512, d);
+      cpu_vector_lanes_for(CpuVectorBits::Bits512, d);
       ADD_FAILURE() << "512 bits accepted";
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), ExitCode::Usage);
@@ -91,21 +93,42 @@ TEST(KernelOptions, CpuVectorBits512IsRefusedWhereTheDeviceCannotTakeIt) {
   }
 }
 
-TEST(KernelOptions, CpuVectorBits512TunesPoclKernelsOnAvx512) {
+TEST(KernelOptions, CpuVectorBits512SetsSixteenLanesOnPoclAvx512) {
+  list_devices();  // loads PoCL, whose LLVM the lanes are set on
   DeviceInfo pocl;
   pocl.name = "pthread-skylake-avx512";
   pocl.platform_name = "Portable Computing Language";
   pocl.is_cpu = true;
   pocl.device_version = "OpenCL 3.0 PoCL HSTR: pthread-x86_64-pc-linux-gnu-skylake-avx512";
-  for (const char* vendor : {"AuthenticAMD", "GenuineIntel"}) {
-    pocl.vendor = vendor;
-    KernelFeatures f = features_for_scene(load_book_scene("diffuse"));
-    EXPECT_EQ(kernel_build_options(f).find("CLPT_TUNE_CPU"), std::string::npos);
-    if (!device_takes_512_bit_vectors(pocl)) GTEST_SKIP() << "this host's CPU has no AVX-512";
-    f.tune_cpu = tune_cpu_for(CpuVectorBits::Bits512, pocl);
-    EXPECT_EQ(f.tune_cpu, std::string(vendor) == "AuthenticAMD" ? "znver3" : "x86-64");
-    EXPECT_NE(kernel_build_options(f).find(" -DCLPT_TUNE_CPU=" + f.tune_cpu), std::string::npos);
-    EXPECT_NE(explain_kernel_options(f).find("CPU vector width: 512 bits"), std::string::npos);
+  KernelFeatures f = features_for_scene(load_book_scene("diffuse"));
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_CPU_VECTOR_LANES"), std::string::npos);
+  EXPECT_NE(explain_kernel_options(f).find("CPU vector width: the compiler's choice"), std::string::npos);
+  if (!device_takes_512_bit_vectors(pocl)) GTEST_SKIP() << "this host's CPU has no AVX-512";
+  std::string why_not;
+  if (!pocl_vectoriser_reachable(&why_not)) GTEST_SKIP() << "PoCL's vectoriser is not reachable: " << why_not;
+  EXPECT_EQ(cpu_vector_lanes_for(CpuVectorBits::Bits256, pocl), 0u);
+  EXPECT_EQ(cpu_vector_lanes_for(CpuVectorBits::Auto, pocl), 16u);
+  f.cpu_vector_lanes = cpu_vector_lanes_for(CpuVectorBits::Bits512, pocl);
+  EXPECT_EQ(f.cpu_vector_lanes, 16u);
+  EXPECT_NE(kernel_build_options(f).find(" -DCLPT_CPU_VECTOR_LANES=16"), std::string::npos);
+  EXPECT_NE(explain_kernel_options(f).find("CPU vector width: 512 bits, 16 work-items per vector iteration"),
+            std::string::npos);
+}
+
+// Setting the width needs PoCL's shared LLVM in the process; where it is missing the reason is
+// given and asking for lanes is a logic error (the plan checks first), while 0 (LLVM's own choice,
+// never set) stays a no-op so that every PoCL launch may ask for its kernel's width.
+TEST(PoclVectoriser, SetsTheWidthOnlyWhereItIsReachable) {
+  list_devices();
+  std::string why_not;
+  if (pocl_vectoriser_reachable(&why_not)) {
+    EXPECT_NO_THROW(set_pocl_vectoriser_lanes(16));
+    EXPECT_NO_THROW(set_pocl_vectoriser_lanes(16));
+    EXPECT_NO_THROW(set_pocl_vectoriser_lanes(0));
+  } else {
+    EXPECT_FALSE(why_not.empty());
+    EXPECT_NO_THROW(set_pocl_vectoriser_lanes(0));
+    EXPECT_THROW(set_pocl_vectoriser_lanes(16), std::logic_error);
   }
 }
 

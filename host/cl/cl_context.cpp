@@ -4,6 +4,7 @@
 
 #include "cl/cl_error.h"
 #include "cl/kernel_cache.h"
+#include "cl/pocl_vectoriser.h"
 #include "util/error.h"
 #include "util/large_pages.h"
 
@@ -58,8 +59,11 @@ Buffer::Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::
                        : CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags, bytes, nullptr));
 }
 
-Kernel::Kernel(cl_program program, const std::string& name, const std::string& where)
-    : kernel_(CL_CREATE(where, clCreateKernel, program, name.c_str())), name_(name), where_(where) {}
+Kernel::Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes)
+    : kernel_(CL_CREATE(where, clCreateKernel, program, name.c_str())),
+      name_(name),
+      where_(where),
+      pocl_vector_lanes_(pocl_vector_lanes) {}
 
 void Kernel::set_arg_bytes(cl_uint index, size_t size, const void* value) {
   CL_CALL(where_ + " (kernel " + name_ + ", argument " + std::to_string(index) + ")",
@@ -113,6 +117,8 @@ cl_event DeviceContext::enqueue(const Kernel& kernel, size_t global_size, size_t
                                 const char* label, bool want_event) {
   if (global_size == 0) return nullptr;
   if (local_size) global_size = (global_size + local_size - 1) / local_size * local_size;
+  // PoCL compiles the kernel's work-group function at its first launch, with the width set now.
+  if (device_.is_pocl_cpu()) set_pocl_vectoriser_lanes(kernel.pocl_vector_lanes());
   cl_event event = nullptr;
   CL_CALL(where_ + " (" + label + ")",
           clEnqueueNDRangeKernel(queue_.get(), kernel.get(), 1, nullptr, &global_size,

@@ -5,6 +5,7 @@
 
 #include <CL/cl.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -68,7 +69,11 @@ class Buffer {
 class Kernel {
  public:
   Kernel() = default;
-  Kernel(cl_program program, const std::string& name, const std::string& where);
+  // `pocl_vector_lanes`: the work-items per vectorised loop iteration PoCL's CPU device compiles
+  // this kernel with (0: LLVM's cost model decides); set before each of its launches there, since
+  // PoCL compiles at the first launch (cl/pocl_vectoriser.h). The program's build options must
+  // carry it (kernel_options.cpp does).
+  Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes = 0);
   template <typename T>
   void set_arg(cl_uint index, const T& value) {
     set_arg_bytes(index, sizeof(T), &value);
@@ -79,12 +84,14 @@ class Kernel {
   }
   const std::string& name() const { return name_; }
   cl_kernel get() const { return kernel_.get(); }
+  uint32_t pocl_vector_lanes() const { return pocl_vector_lanes_; }
 
  private:
   void set_arg_bytes(cl_uint index, size_t size, const void* value);
   KernelHandle kernel_;
   std::string name_;
   std::string where_;
+  uint32_t pocl_vector_lanes_ = 0;
 };
 
 // One device with its context and in-order, profiling-enabled queue.

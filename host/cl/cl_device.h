@@ -39,7 +39,7 @@ struct DeviceInfo {
   // "device 'NAME' (PLATFORM)" for messages; "(PLATFORM, a simulator)" for a simulator.
   std::string label() const;
   // PoCL's CPU device (the platform clpt's tests and CI run on): the one whose compiler clpt can
-  // read (vectoriser remarks) and tune (kernels/cpu_tuning.h).
+  // read (vectoriser remarks) and whose vectoriser width it can set (cl/pocl_vectoriser.h).
   bool is_pocl_cpu() const;
 };
 

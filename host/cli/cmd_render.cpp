@@ -385,8 +385,8 @@ std::function<int()> add_render_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "unrolled", "rolled"}));
   cmd->add_option("--cpu-vector-bits", o->cpu_vector_bits,
-                  "PoCL x86 CPUs with AVX-512: vector width of the kernels, auto (256), 256 or 512 "
-                  "(16 float lanes; README \"Speed\")")
+                  "PoCL x86 CPUs with AVX-512: vector width of the kernels, auto (512 there), 256 (LLVM's "
+                  "choice) or 512 (16 work-items per vector iteration; README \"Speed\")")
       ->capture_default_str()
       ->check(CLI::IsMember({"auto", "256", "512"}));
   cmd->add_option("--sphere-reads", o->sphere_reads,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "cl/pocl_vectoriser.h"
 #include "scene/device_scene.h"
 #include "util/error.h"
 
@@ -103,14 +104,22 @@ bool device_takes_512_bit_vectors(const DeviceInfo& device) {
          device.device_version.find("x86_64") != std::string::npos && host_has_avx512;
 }
 
-std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device) {
-  if (bits != CpuVectorBits::Bits512) return "";
-  if (!device_takes_512_bit_vectors(device))
+// The 16 lanes of 512-bit float vectors. More (32) measured the same on AMD EPYC Zen 5.
+constexpr uint32_t kLanesAt512Bits = 16;
+
+uint32_t cpu_vector_lanes_for(CpuVectorBits bits, const DeviceInfo& device) {
+  if (bits == CpuVectorBits::Bits256) return 0;
+  const bool takes_512 = device_takes_512_bit_vectors(device);
+  std::string why_not;
+  const bool reachable = takes_512 && pocl_vectoriser_reachable(&why_not);
+  if (bits == CpuVectorBits::Auto) return reachable ? kLanesAt512Bits : 0;
+  if (!takes_512)
     throw Error(ExitCode::Usage, "--cpu-vector-bits 512: " + device.label() +
                                       " is not PoCL's CPU device on an x86-64 CPU with AVX-512 (use 256 or auto)");
-  // Tunings without LLVM 15's 256-bit preference; the AMD one is what was measured (znver4 is
-  // newer than LLVM 15).
-  return device.vendor.find("AMD") != std::string::npos ? "znver3" : "x86-64";
+  if (!reachable)
+    throw Error(ExitCode::Usage, "--cpu-vector-bits 512: the width of " + device.label() +
+                                      "'s vectoriser cannot be set: " + why_not + " (use 256 or auto)");
+  return kLanesAt512Bits;
 }
 
 std::string pocl_llvm_cpu(const DeviceInfo& device) {
@@ -285,7 +294,9 @@ std::string kernel_build_options(const KernelFeatures& features) {
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
-  if (!features.tune_cpu.empty()) o << " -DCLPT_TUNE_CPU=" << features.tune_cpu;
+  // Read by no kernel: PoCL's vectoriser takes the width from the host (cl/pocl_vectoriser.h), and
+  // it is here so that PoCL's cache and clpt's keep a 16-lane build apart from LLVM's own.
+  if (features.cpu_vector_lanes > 0) o << " -DCLPT_CPU_VECTOR_LANES=" << features.cpu_vector_lanes;
   if (reads_spheres_by_select(features)) o << " -DCLPT_NO_FAST_GATHER=1";
   if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
   if (picks_material_by_select(features) && !reads_spheres_by_select(features)) o << " -DCLPT_MATERIAL_BY_SELECT=1";
@@ -373,11 +384,15 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     o << "  scene loops: " << (features.unroll_scene_loops ? "unrolled" : "rolled") << " (--scene-loops "
       << scene_loops_name(features.scene_loops)
       << (features.scene_loops == SceneLoops::Auto ? ": unrolled on CPUs, rolled on GPUs" : "") << ")\n";
+  const char* auto_rule =
+      features.cpu_vector_bits == CpuVectorBits::Auto ? ": 512 bits on PoCL's CPU device with AVX-512" : "";
   o << "  CPU vector width: "
-    << (features.tune_cpu.empty()
-            ? std::string("the compiler's default (--cpu-vector-bits ") + cpu_vector_bits_name(features.cpu_vector_bits) +
-                  (features.cpu_vector_bits == CpuVectorBits::Auto ? ": 256 bits on an AVX-512 CPU" : "") + ")"
-            : "512 bits (--cpu-vector-bits 512: tuned as " + features.tune_cpu + ", kernels/cpu_tuning.h)")
+    << (features.cpu_vector_lanes == 0
+            ? std::string("the compiler's choice (--cpu-vector-bits ") + cpu_vector_bits_name(features.cpu_vector_bits) +
+                  auto_rule + ")"
+            : "512 bits, " + std::to_string(features.cpu_vector_lanes) +
+                  " work-items per vector iteration, set on PoCL's vectoriser (--cpu-vector-bits " +
+                  cpu_vector_bits_name(features.cpu_vector_bits) + auto_rule + ")")
     << "\n";
   o << "  hit sphere reads: "
     << (!features.no_fast_gather ? std::string("indexed")

@@ -66,13 +66,15 @@ std::optional<SceneLoops> parse_scene_loops(const std::string& name);
 // Whether a kernel for this device unrolls its scene loops.
 bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device);
 
-// How wide PoCL vectorises the kernels on an x86 CPU with AVX-512 (`--cpu-vector-bits`;
-// kernels/cpu_tuning.h says how 512 is reached).
-//   auto: 256, LLVM's own choice (measured on AMD EPYC Zen 4, 2026-12-02: 512 bits bought 1.00-1.06x
-//         with the float presets, within the runs' spread, and 0.28x double with nee, where LLVM's
-//         SLP vectoriser pairs values and stops the work-item loop; docs/performance.md "Width")
-//   256:  8 float / 4 double lanes
-//   512:  16 float / 8 double lanes; only on PoCL x86 CPU devices with AVX-512, else a usage error
+// How wide PoCL vectorises the kernels on an x86 CPU with AVX-512 (`--cpu-vector-bits`): how many
+// work-items one iteration of a vectorised work-item loop handles, set on PoCL's LLVM vectoriser
+// (cl/pocl_vectoriser.h).
+//   auto: 512 where it can be had (device_takes_512_bit_vectors and the vectoriser reachable),
+//         else 256 (measured on AMD EPYC Zen 5, 2026-12-04: 16 lanes ran 1.4-2.3x faster than
+//         LLVM's own 8 over the bench's scenes, presets and estimators; docs/performance.md "Width")
+//   256:  LLVM's cost model decides: 8 float / 4 double lanes on these CPUs
+//   512:  16 lanes (512-bit float vectors; doubles take two registers per value); only on PoCL
+//         x86 CPU devices with AVX-512 whose vectoriser is reachable, else a usage error
 enum class CpuVectorBits { Auto, Bits256, Bits512 };
 const char* cpu_vector_bits_name(CpuVectorBits bits);
 // "auto" | "256" | "512"; nullopt otherwise.
@@ -80,10 +82,11 @@ std::optional<CpuVectorBits> parse_cpu_vector_bits(const std::string& name);
 // Whether this device can be given 512-bit vectors: PoCL's CPU device on an x86-64 host whose
 // CPU has AVX-512 (PoCL's CPU device is the host's CPU).
 bool device_takes_512_bit_vectors(const DeviceInfo& device);
-// The LLVM CPU whose tuning the kernels take for this device (CLPT_TUNE_CPU), or "" for the
-// compiler's default: "znver3" on AMD, "x86-64" on other vendors, when `bits` is 512. Throws
-// Error(Usage) naming --cpu-vector-bits when 512 is asked of a device that does not take it.
-std::string tune_cpu_for(CpuVectorBits bits, const DeviceInfo& device);
+// The lanes PoCL's vectoriser is set to for this device's kernels (KernelFeatures::
+// cpu_vector_lanes): 16 for 512 (and auto where 512 can be had), 0 (LLVM's choice) otherwise.
+// Throws Error(Usage) naming --cpu-vector-bits, and why, when 512 is asked of a device that
+// cannot have it.
+uint32_t cpu_vector_lanes_for(CpuVectorBits bits, const DeviceInfo& device);
 
 // The LLVM CPU PoCL compiles for ("haswell", "skylake-avx512", ...), read from the end of its
 // device version ("... HSTR: pthread-x86_64-pc-linux-gnu-haswell"); "" for other devices.
@@ -149,7 +152,9 @@ struct KernelFeatures {
   SceneLoops scene_loops = SceneLoops::Auto;  // the request; resolved per device into:
   bool unroll_scene_loops = true;  // false: CLPT_UNROLL_SCENE_LOOPS=0 (a specialised kernel only)
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;  // the request; resolved per device into:
-  std::string tune_cpu;  // CLPT_TUNE_CPU when not empty (kernels/cpu_tuning.h): 512-bit vectors
+  // Work-items per vectorised loop iteration on PoCL's CPU device when > 0 (cl/pocl_vectoriser.h),
+  // with CLPT_CPU_VECTOR_LANES in the build options to key the kernel caches; 0: LLVM's choice.
+  uint32_t cpu_vector_lanes = 0;
   SphereReads sphere_reads = SphereReads::Auto;  // the request; resolved per device into:
   // The hit sphere read by selects (sphere_reads_by_select_for): CLPT_NO_FAST_GATHER=1 in a
   // specialised kernel whose spheres are all in the loop.

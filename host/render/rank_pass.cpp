@@ -30,7 +30,7 @@ std::string device_independent_options(KernelFeatures features) {
   features.scene_loops = SceneLoops::Auto;
   features.unroll_scene_loops = true;
   features.cpu_vector_bits = CpuVectorBits::Auto;
-  features.tune_cpu.clear();
+  features.cpu_vector_lanes = 0;
   features.sphere_reads = SphereReads::Auto;
   features.no_fast_gather = false;
   features.build_nonce = 0;

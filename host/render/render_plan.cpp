@@ -120,7 +120,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     d.form_reason = request.form ? "--form" : "the device's default";
     d.features = features;
     d.features.unroll_scene_loops = scene_loops_unrolled_for(request.scene_loops, d.device);
-    d.features.tune_cpu = tune_cpu_for(request.cpu_vector_bits, d.device);
+    d.features.cpu_vector_lanes = cpu_vector_lanes_for(request.cpu_vector_bits, d.device);
     d.features.no_fast_gather = sphere_reads_by_select_for(request.sphere_reads, d.device, request.precision);
     if (d.form == ExecutionForm::Megakernel) {
       d.entry_file = "megakernel.cl";

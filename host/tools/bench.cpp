@@ -97,7 +97,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   DevicePool pool(plan, ds, FaultPlan());
   row.build_cached_s = pool.shares().front().build_seconds;
   row.local_size = planned.local_size;
-  row.cpu_vector_bits = planned.features.tune_cpu.empty() ? "default" : "512";
+  row.cpu_vector_bits = planned.features.cpu_vector_lanes == 0 ? "default" : "512";
   row.sphere_reads = reads_spheres_by_select(planned.features) ? "selects" : "indexed";
   if (form == ExecutionForm::Megakernel) row.loop = planned.features.lockstep_group ? "lockstep" : "path";
   row.paths_in_flight = planned.paths_in_flight;
