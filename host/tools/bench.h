@@ -68,7 +68,7 @@ struct BenchRow {
   std::string scene, form, kernel, precision, estimator, device;
   std::string loop;       // the megakernel's loop as run ("lockstep", "path"); "" for the wavefront
   size_t local_size = 0;  // the work-group size as run; 0: the driver's choice
-  // The kernels' CPU vector width as built: "512" (CLPT_TUNE_CPU), else "default".
+  // The kernels' CPU vector width as built: "512" (16 lanes set on PoCL's vectoriser), else "default".
   std::string cpu_vector_bits = "default";
   std::string sphere_reads = "indexed";  // "selects" where the kernel read the hit sphere by selects
   uint32_t paths_in_flight = 0;
