@@ -35,13 +35,16 @@ constexpr unsigned kImportFlags = aiProcess_PreTransformVertices | aiProcess_Val
 constexpr unsigned kTriangulateFlags = aiProcess_Triangulate | aiProcess_SortByPType;
 constexpr unsigned kJoinFlags = aiProcess_JoinIdenticalVertices;
 
-// Where the PLY header's end_header line ends (a line starting with the word, followed by
-// whitespace or the end of the file), or npos.
+// Where the PLY header's end_header line ends (a line starting with the word, followed by a
+// space, a tab, the line's end or the end of the file), or npos. Not any whitespace: assimp ends
+// the word only at those (and NUL or form feed), and "end_header" followed by a vertical tab made
+// it loop as if there were no end_header at all (found by fuzz_mesh_file, 2026-12-04).
 size_t ply_header_end(std::string_view bytes) {
   constexpr std::string_view kLine = "\nend_header";
+  constexpr std::string_view kWordEnds = " \t\r\n";
   for (size_t at = bytes.find(kLine); at != std::string_view::npos; at = bytes.find(kLine, at + 1)) {
     const size_t after = at + kLine.size();
-    if (after == bytes.size() || std::isspace(static_cast<unsigned char>(bytes[after]))) return after;
+    if (after == bytes.size() || kWordEnds.find(bytes[after]) != std::string_view::npos) return after;
   }
   return std::string_view::npos;
 }
