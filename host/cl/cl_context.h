@@ -72,7 +72,8 @@ class Kernel {
   // `pocl_vector_lanes`: the work-items per vectorised loop iteration PoCL's CPU device compiles
   // this kernel with (0: LLVM's cost model decides); set before each of its launches there, since
   // PoCL compiles at the first launch (cl/pocl_vectoriser.h). The program's build options must
-  // carry it (kernel_options.cpp does).
+  // carry it: renderers take their kernels from Renderer::entry_point, which passes the lanes of
+  // the features the program was built with (kernel_options.cpp puts them in its options).
   Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes = 0);
   template <typename T>
   void set_arg(cl_uint index, const T& value) {

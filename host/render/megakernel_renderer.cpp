@@ -17,8 +17,8 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
                                      std::to_string(ctx.device().max_work_group_size) + " work-items");
   local_size_ = lockstep_group_ ? lockstep_group_ : local_size;  // the plan sets both alike
   program_ = build(ctx, "megakernel.cl", features);
-  kernel_ = Kernel(program_.get(), "render_paths", ctx.where(), features.cpu_vector_lanes);
-  film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where(), features.cpu_vector_lanes);
+  kernel_ = entry_point(ctx, program_, "render_paths");
+  film_ = entry_point(ctx, program_, "film_sum_jobs");
 
   scene_ = upload_scene(ctx, scene);
 }

@@ -19,7 +19,12 @@ ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
   ProgramHandle program =
       ctx.build_program(assemble_kernel_source(entry_file), kernel_build_options(features), entry_file);
   build_seconds_ = seconds_since(start);
+  cpu_vector_lanes_ = features.cpu_vector_lanes;
   return program;
+}
+
+Kernel Renderer::entry_point(const DeviceContext& ctx, const ProgramHandle& program, const char* name) const {
+  return Kernel(program.get(), name, ctx.where(), cpu_vector_lanes_);
 }
 
 namespace {

@@ -46,6 +46,10 @@ class Renderer {
   // recording the build time (driver and clpt caches included). The options are the plan's
   // (render_plan.h), which reports them.
   ProgramHandle build(DeviceContext& ctx, const std::string& entry_file, const KernelFeatures& features);
+  // The entry point `name` of the program `build` made for `ctx`, carrying the lanes PoCL's
+  // vectoriser compiles it with: those of the features it was built with, which its build options
+  // carry too (cl/pocl_vectoriser.h).
+  Kernel entry_point(const DeviceContext& ctx, const ProgramHandle& program, const char* name) const;
 
   // The scene's buffers, in the kernels' argument order (kernels/bvh.cl, SceneBuffers). None is
   // ever empty (OpenCL has no zero-sized buffers): an unused one holds a zeroed placeholder entry;
@@ -64,6 +68,7 @@ class Renderer {
   double build_seconds_ = 0;
 
  private:
+  uint32_t cpu_vector_lanes_ = 0;  // of the features of the last build
   Buffer slots_;
 };
 

@@ -24,10 +24,10 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
     throw Error(ExitCode::Usage, "--local-size " + std::to_string(local_size_) + ": the wavefront's work-groups hold at most " +
                                      std::to_string(kMaxLocalSize) + " work-items");
   program_ = build(ctx, "wavefront.cl", features);  // scene loops as planned (render_plan.h)
-  generate_ = Kernel(program_.get(), "wf_generate", ctx.where(), features.cpu_vector_lanes);
-  intersect_ = Kernel(program_.get(), "wf_intersect", ctx.where(), features.cpu_vector_lanes);
-  shade_ = Kernel(program_.get(), "wf_shade", ctx.where(), features.cpu_vector_lanes);
-  film_ = Kernel(program_.get(), "film_sum_jobs", ctx.where(), features.cpu_vector_lanes);
+  generate_ = entry_point(ctx, program_, "wf_generate");
+  intersect_ = entry_point(ctx, program_, "wf_intersect");
+  shade_ = entry_point(ctx, program_, "wf_shade");
+  film_ = entry_point(ctx, program_, "film_sum_jobs");
 
   scene_ = upload_scene(ctx, scene);
   // `real` state fields are float, or double under the double preset.
