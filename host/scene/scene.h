@@ -20,15 +20,53 @@ struct SourcePosition {
   std::string str() const;  // "file:line:column"
 };
 
-enum class MaterialType : uint32_t { Lambertian = 0, Phong = 1, Glass = 2, Emitter = 3, Mirror = 4 };
+// Pbr: the glTF 2.0 metallic-roughness material (the specification's Appendix B) with its
+// KHR_materials_ior, _transmission, _volume and _emissive_strength extensions; TOML `type = "pbr"`.
+enum class MaterialType : uint32_t { Lambertian = 0, Phong = 1, Glass = 2, Emitter = 3, Mirror = 4, Pbr = 5 };
 const char* material_type_name(MaterialType type);
 
 struct Material {
   MaterialType type = MaterialType::Lambertian;
-  Vec3 reflectance{0, 0, 0};  // albedo rho per channel, in [0, 1] (Lambertian, Phong, glass, mirror)
+  // albedo rho per channel, in [0, 1] (Lambertian, Phong, glass, mirror); Pbr: the base colour
+  Vec3 reflectance{0, 0, 0};
   double phong_exponent = 0;  // Phong lobe exponent n >= 0
-  double ior = 1.5;           // glass index of refraction inside; outside is 1
-  Vec3 emission{0, 0, 0};     // emitted radiance per channel (emitters), >= 0
+  double ior = 1.5;           // index of refraction inside (glass, Pbr); outside is 1
+  // Emitted radiance per channel, >= 0 (emitters; Pbr: emissiveFactor x emissive strength, so an
+  // emission of 1 writes 1 into the film).
+  Vec3 emission{0, 0, 0};
+  // Pbr only. metallic and roughness in [0, 1] (glTF's defaults 1 and 1); the GGX alpha is
+  // roughness^2, and roughness 0 is a delta lobe. transmission in [0, 1]: the thin-walled
+  // KHR_materials_transmission. thickness > 0 (KHR_materials_volume) on a closed mesh makes the
+  // transmission a rough refraction through the volume instead (attenuation: Beer's law,
+  // attenuation_color at attenuation_distance; infinity: none).
+  double metallic = 1;
+  double roughness = 1;
+  double transmission = 0;
+  double thickness = 0;
+  Vec3 attenuation_color{1, 1, 1};
+  double attenuation_distance = 0;  // world units; 0: no attenuation (glTF's +infinity)
+  // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/gltf.md says how a
+  // single-sided surface seen from behind is rendered.
+  bool double_sided = true;
+};
+
+// KHR_lights_punctual in physical units, converted by the loader: a light of I candela has a
+// radiant intensity of I/683 W/sr, a directional light of E lux an irradiance of E/683 W/m^2 (the
+// lumens-per-watt factor Blender's glTF importer uses in its default, physical, mode).
+enum class LightType : uint32_t { Point = 0, Spot = 1, Directional = 2 };
+const char* light_type_name(LightType type);
+struct PunctualLight {
+  std::string name;  // from the file, or "lights[i]"
+  LightType type = LightType::Point;
+  Vec3 position{0, 0, 0};   // world units (point, spot)
+  Vec3 direction{0, 0, -1}; // unit, the direction the light travels: the node's local -Z (spot, directional)
+  // Point and spot: radiant intensity per channel, W/sr (colour x candela / 683).
+  // Directional: irradiance per channel on a surface facing the light, W/m^2 (colour x lux / 683).
+  Vec3 intensity{0, 0, 0};
+  double range = 0;               // world units; 0: unlimited (glTF's undefined range)
+  double inner_cone_rad = 0;      // spot: half-angles, 0 <= inner < outer <= pi/2
+  double outer_cone_rad = 0.7853981633974483;
+  SourcePosition where;           // the file and element it came from
 };
 
 struct Sphere {
@@ -59,6 +97,9 @@ struct TriangleMesh {
   std::string file_hash;  // FNV-1a 64 of the mesh file's bytes, hex; "" inline
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // empty, or positions.size() entries
+  // Texture coordinates (glTF TEXCOORD_0), one per position, or empty. Stored as each format
+  // defines them (glTF: (0,0) at the image's top-left); textures (a later issue) read them.
+  std::vector<std::array<double, 2>> uvs;
   std::vector<std::array<uint32_t, 3>> triangles;
   Material material;
   SourcePosition where;  // position of the [[mesh]] table
@@ -69,11 +110,16 @@ struct TriangleMesh {
 
 // Pinhole camera. The book's camera: a sensor sensor_height units high placed sensor_distance in
 // front of the pinhole, i.e. vertical_fov = 2 atan(sensor_height / 2 / sensor_distance).
+// An orthographic camera (glTF `orthographic`) looks along look_at - position with parallel rays
+// from a sensor ortho_height world units high (2 ymag), its width from the image's aspect.
+enum class Projection : uint32_t { Perspective = 0, Orthographic = 1 };
 struct Camera {
   Vec3 position{0, 0, 0};
   Vec3 look_at{0, 0, -1};
   Vec3 up{0, 1, 0};
   double vertical_fov_deg = 36.869897645844021;
+  Projection projection = Projection::Perspective;
+  double ortho_height = 2;  // world units, > 0 (orthographic only)
 };
 
 // Values equal the kernels' CLPT_SAMPLER_* (types.h) and are stored in checkpoints.
@@ -109,7 +155,8 @@ struct Scene {
   Camera camera;
   RenderSettings settings;
   std::vector<Sphere> spheres;
-  std::vector<TriangleMesh> meshes;  // the [[mesh]] tables, in file order
+  std::vector<TriangleMesh> meshes;  // the [[mesh]] tables, in file order; then glTF primitives
+  std::vector<PunctualLight> lights;  // KHR_lights_punctual (glTF), in node order
   // Non-fatal findings of the loader ("FILE:LINE:COLUMN: ..."), e.g. degenerate triangles dropped;
   // the commands print each as "clpt: warning: ...".
   std::vector<std::string> warnings;

@@ -44,6 +44,20 @@ const char* material_type_name(MaterialType type) {
       return "emitter";
     case MaterialType::Mirror:
       return "mirror";
+    case MaterialType::Pbr:
+      return "pbr";
+  }
+  return "unknown";
+}
+
+const char* light_type_name(LightType type) {
+  switch (type) {
+    case LightType::Point:
+      return "point";
+    case LightType::Spot:
+      return "spot";
+    case LightType::Directional:
+      return "directional";
   }
   return "unknown";
 }
