@@ -65,6 +65,39 @@ Kernel::Kernel(cl_program program, const std::string& name, const std::string& w
       where_(where),
       pocl_vector_lanes_(pocl_vector_lanes) {}
 
+Kernel::Resources Kernel::resources(cl_device_id device) const {
+  Resources r;
+  cl_ulong bytes = 0;
+  const std::string where = where_ + " (kernel " + name_ + ")";
+  CL_CALL(where, clGetKernelWorkGroupInfo(kernel_.get(), device, CL_KERNEL_PRIVATE_MEM_SIZE, sizeof bytes, &bytes, nullptr));
+  r.private_bytes = bytes;
+  CL_CALL(where, clGetKernelWorkGroupInfo(kernel_.get(), device, CL_KERNEL_LOCAL_MEM_SIZE, sizeof bytes, &bytes, nullptr));
+  r.local_bytes = bytes;
+  CL_CALL(where, clGetKernelWorkGroupInfo(kernel_.get(), device, CL_KERNEL_WORK_GROUP_SIZE, sizeof r.max_work_group,
+                                          &r.max_work_group, nullptr));
+  CL_CALL(where, clGetKernelWorkGroupInfo(kernel_.get(), device, CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE,
+                                          sizeof r.preferred_multiple, &r.preferred_multiple, nullptr));
+  return r;
+}
+
+std::vector<std::string> Kernel::names_in(const ProgramHandle& program, const std::string& where) {
+  cl_uint count = 0;
+  CL_CALL(where, clCreateKernelsInProgram(program.get(), 0, nullptr, &count));
+  std::vector<cl_kernel> kernels(count);
+  CL_CALL(where, clCreateKernelsInProgram(program.get(), count, kernels.data(), nullptr));
+  std::vector<std::string> names;
+  for (cl_kernel k : kernels) {
+    const KernelHandle owned(k);
+    size_t size = 0;
+    CL_CALL(where, clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, 0, nullptr, &size));
+    std::string name(size, '\0');
+    CL_CALL(where, clGetKernelInfo(k, CL_KERNEL_FUNCTION_NAME, size, name.data(), nullptr));
+    while (!name.empty() && name.back() == '\0') name.pop_back();
+    names.push_back(name);
+  }
+  return names;
+}
+
 void Kernel::set_arg_bytes(cl_uint index, size_t size, const void* value) {
   CL_CALL(where_ + " (kernel " + name_ + ", argument " + std::to_string(index) + ")",
           clSetKernelArg(kernel_.get(), index, size, value));
@@ -100,17 +133,24 @@ ProgramHandle DeviceContext::build_program_from_source(const std::string& source
   ProgramHandle program(
       CL_CREATE(where_, clCreateProgramWithSource, context_.get(), 1, &text, &length));
   const cl_int err = clBuildProgram(program.get(), 1, &device_.id, options.c_str(), nullptr, nullptr);
-  if (err != CL_SUCCESS) {
-    size_t size = 0;
-    clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
-    std::string log(size, '\0');
-    clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
-    while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+  if (err != CL_SUCCESS)
     throw Error(ExitCode::DeviceError, "clBuildProgram failed with " + cl_error_name(err) + " on " +
                                            where_ + " for program '" + label + "' (options: " +
-                                           options + "); build log:\n" + log);
-  }
+                                           options + "); build log:\n" + build_log(program));
   return program;
+}
+
+std::string DeviceContext::build_log(const ProgramHandle& program) const {
+  // Unchecked on purpose: it also serves a failed build's error message, which must not be lost
+  // to a second failure; a log that cannot be read is an empty one.
+  size_t size = 0;
+  if (clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size) != CL_SUCCESS)
+    return "";
+  std::string log(size, '\0');
+  if (clGetProgramBuildInfo(program.get(), device_.id, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr) != CL_SUCCESS)
+    return "";
+  while (!log.empty() && (log.back() == '\0' || log.back() == '\n')) log.pop_back();
+  return log;
 }
 
 cl_event DeviceContext::enqueue(const Kernel& kernel, size_t global_size, size_t local_size,

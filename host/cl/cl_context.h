@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "cl/cl_device.h"
 
@@ -85,6 +86,16 @@ class Kernel {
   }
   const std::string& name() const { return name_; }
   cl_kernel get() const { return kernel_.get(); }
+  // What the driver says this kernel needs on `device` (clGetKernelWorkGroupInfo): private memory
+  // per work-item (registers spilled or arrays placed off-chip), local memory per work-group, the
+  // largest work-group it can launch with and the preferred multiple of the work-group size.
+  struct Resources {
+    uint64_t private_bytes = 0, local_bytes = 0;
+    size_t max_work_group = 0, preferred_multiple = 0;
+  };
+  Resources resources(cl_device_id device) const;
+  // The names of every kernel of a built program, in the driver's order.
+  static std::vector<std::string> names_in(const ProgramHandle& program, const std::string& where);
   uint32_t pocl_vector_lanes() const { return pocl_vector_lanes_; }
 
  private:
@@ -112,6 +123,8 @@ class DeviceContext {
   // Always compiles from source; the cache's own fallback.
   ProgramHandle build_program_from_source(const std::string& source, const std::string& options,
                                           const std::string& label);
+  // A built program's build log on this device ("" when the driver wrote none).
+  std::string build_log(const ProgramHandle& program) const;
 
   // The kernel binary cache build_program goes through (null: none, the default, so tests and
   // `clpt bench` always compile). use_default_kernel_cache attaches one at

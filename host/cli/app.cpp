@@ -14,10 +14,10 @@ ClptApp::ClptApp() {
   commands.emplace_back("cache", add_cache_command(app));
   commands.emplace_back("scene-transform", add_scene_transform_command(app));
   commands.emplace_back("kernels", add_kernels_command(app));
+  commands.emplace_back("verify", add_verify_command(app));
 #ifdef CLPT_WITH_OIIO
   commands.emplace_back("compare", add_compare_command(app));
   commands.emplace_back("tradeoff", add_tradeoff_command(app));
-  commands.emplace_back("verify", add_verify_command(app));
 #endif
 }
 

@@ -1,4 +1,5 @@
-// `clpt kernels list` and `clpt kernels emit DIR --scene scenes/diffuse.toml`: the covering set of
+// `clpt kernels list`, `clpt kernels emit DIR --scene scenes/diffuse.toml` and `clpt kernels budget
+// --scene scenes/diffuse.toml --device D` (tools/kernel_budget.h): the covering set of
 // kernel variants (host/tools/kernel_variants.h), for the test tiers that check every variant on
 // another OpenCL implementation (Oclgrind) and with GPU compilers (scripts/gpu_compile.sh).
 // `emit` writes, per variant, the program's whole source (includes expanded, as clpt hands it
@@ -10,7 +11,9 @@
 
 #include "cli/commands.h"
 #include "kernels/kernel_source.h"
+#include "cl/cl_device.h"
 #include "scene/scene_loader.h"
+#include "tools/kernel_budget.h"
 #include "tools/kernel_variants.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -21,6 +24,7 @@ namespace {
 struct KernelsOptions {
   std::string directory;
   std::string scene;
+  std::string device = "gpu";
 };
 
 int list_variants() {
@@ -47,6 +51,18 @@ int emit_variants(const KernelsOptions& o) {
   return 0;
 }
 
+int budget(const KernelsOptions& o) {
+  const Scene diffuse = load_scene_file(o.scene);
+  const DeviceInfo device = select_device(list_devices(), o.device);
+  std::fprintf(stderr, "kernels budget: every covering variant built from source on %s, driver %s\n",
+               device.label().c_str(), device.driver_version.c_str());
+  const auto rows = measure_kernel_budget(device, diffuse, [](const std::string& name) {
+    std::fprintf(stderr, "  building %s\n", name.c_str());
+  });
+  std::fputs(kernel_budget_tsv(rows).c_str(), stdout);
+  return 0;
+}
+
 }  // namespace
 
 std::function<int()> add_kernels_command(CLI::App& app) {
@@ -60,7 +76,16 @@ std::function<int()> add_kernels_command(CLI::App& app) {
   emit->add_option("dir", o->directory, "Existing output directory")->required();
   emit->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml): variants change its balls")
       ->required();
-  return [o, list] { return list->parsed() ? list_variants() : emit_variants(*o); };
+  CLI::App* budget_cmd = cmd->add_subcommand(
+      "budget", "Build every variant on a device and print, per kernel, what its driver reports: private and "
+                "local memory, work-group limits, and (NVIDIA) ptxas's registers and spills, as TSV");
+  budget_cmd->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml)")->required();
+  budget_cmd->add_option("--device", o->device, "The device, as for render --device")->capture_default_str();
+  return [o, list, emit] {
+    if (list->parsed()) return list_variants();
+    if (emit->parsed()) return emit_variants(*o);
+    return budget(*o);
+  };
 }
 
 }  // namespace clpt

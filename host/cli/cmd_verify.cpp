@@ -49,6 +49,7 @@ int run(VerifyCommandOptions& o) {
   c.spp = o.spp;
   c.reference = o.reference == "device"    ? ReferenceMode::Device
                 : o.reference == "builtin" ? ReferenceMode::Builtin
+                : o.reference == "films"   ? ReferenceMode::Films
                                            : ReferenceMode::Auto;
   const bool quiet = o.quiet;
   VerifyReport report = run_verify(
@@ -74,7 +75,7 @@ std::string help_footer() {
   for (size_t i = 0; i < o.block_sizes.size(); ++i)
     blocks += (i ? i + 1 == o.block_sizes.size() ? " and " : ", " : "") + std::to_string(o.block_sizes[i]) + "x" +
               std::to_string(o.block_sizes[i]);
-  char text[2048];
+  char text[3072];
   std::snprintf(
       text, sizeof text,
       "Rows: device x scene x form x precision (double only where the device has cl_khr_fp64), the "
@@ -83,7 +84,10 @@ std::string help_footer() {
       "%dx%d), spp (%lld) and seed, once per scene x form x precision; when that device is also under "
       "test its rows are kept: they compare it with itself and prove the harness. --reference builtin "
       "(the default without PoCL) compares with gemspt's converged renders (--reference-dir) at "
-      "%dx%d, %lld spp; no same-seed fraction there (n/a).\n"
+      "%dx%d, %lld spp; no same-seed fraction there (n/a). --reference films compares with films a PoCL "
+      "device rendered earlier, elsewhere (--reference device --save-reference-films DIR writes them; "
+      "--reference-dir DIR reads them, at their own size, spp and seed): for machines without PoCL "
+      "(scripts/gpu-report.sh).\n"
       "Verdict (PASS/FAIL): compare_renders at its fixed defaults: a pixel accepts at alpha %g over "
       "its 3 channels and >= %.2f%% of pixels must; %s block means and the image mean at family-wise "
       "alpha %g each. Worst |z|: the largest |z| among every block scale's worst block and the image "
@@ -119,16 +123,19 @@ std::function<int()> add_verify_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember({"fast", "robust", "double"}));
   cmd->add_option("--reference", o->reference,
-                  "auto (a PoCL device when present, else builtin), device (PoCL) or builtin (gemspt images)")
+                  "auto (a PoCL device when present, else builtin), device (PoCL), builtin (gemspt images) or films (--reference-dir)")
       ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "device", "builtin"}));
+      ->check(CLI::IsMember({"auto", "device", "builtin", "films"}));
   cmd->add_option("--reference-dir", c.reference_dir,
-                  "Directory of gemspt_{diffuse,specular,glass}_160x120.exr (default: the tree's tests/reference)");
+                  "builtin: directory of gemspt_{diffuse,specular,glass}_160x120.exr (default: the tree's "
+                  "tests/reference); films: the films' directory");
+  cmd->add_option("--save-reference-films", c.save_films_dir,
+                  "--reference device: also write each reference render and films.json into this directory");
   cmd->add_option("--width", c.width, "Image width (default 64; --reference builtin: 160 only)")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", c.height, "Image height (default 48; --reference builtin: 120 only)")->check(CLI::Range(1, 16384));
   cmd->add_option("--spp", o->spp, "Samples per pixel, a multiple of 16 (default 1280; --reference builtin: 2048)")
       ->check(CLI::Range(int64_t(16), int64_t(1) << 31));
-  cmd->add_option("--seed", c.seed, "Random seed of every render (device and reference)")->capture_default_str();
+  cmd->add_option("--seed", c.seed, "Random seed of every render (device and reference; default 1, films: theirs)");
   cmd->add_option("--json", o->json_path, "Also write the rows to this .json file (atomically)");
   cmd->add_flag("-q,--quiet", o->quiet, "Print only the FAIL lines and the final count");
   return [o] { return run(*o); };

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "io/image_io.h"
+#include "render/film_raw.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -151,7 +152,7 @@ RenderFile read_render_file(const std::string& path, const std::string& what_giv
     out.image.variance = take_rgb(img, what, kVarianceChannels, kRenderHolds);
     return out;
   }
-  const std::string variance_path = std::filesystem::path(path).replace_extension(".var.pfm").string();
+  const std::string variance_path = variance_pfm_path(path);
   if (!std::filesystem::exists(variance_path))
     throw Error(ExitCode::Usage, what + ": no variance file " + variance_path + " beside this raw film");
   const LoadedImage variance = read_image(variance_path);

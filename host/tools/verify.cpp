@@ -8,11 +8,15 @@
 #include <nlohmann/json.hpp>
 
 #include "cl/cl_device.h"
+#ifdef CLPT_WITH_OIIO
 #include "io/render_file.h"
+#endif
 #include "render/fault_injection.h"
+#include "render/film_raw.h"
 #include "render/render_session.h"
 #include "scene/scene_loader.h"
 #include "util/appendf.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 #ifndef CLPT_SOURCE_TREE
@@ -51,12 +55,64 @@ std::string reference_file(const std::string& dir, const std::string& scene) {
 
 // A gemspt reference: a render file (io/render_file.h) of the references' size.
 MeanVarianceImage load_reference(const std::string& path) {
+#ifndef CLPT_WITH_OIIO
+  throw Error(ExitCode::Usage, path + ": this clpt was built without OpenImageIO (CLPT_WITH_OIIO=OFF), which "
+                                      "reads gemspt's EXR references; use --reference device or films");
+#else
   RenderFile file = read_render_file(path);
   if (file.image.width != kBuiltinWidth || file.image.height != kBuiltinHeight)
     throw Error(ExitCode::Usage, path + ": a gemspt reference must be " + std::to_string(kBuiltinWidth) + "x" +
                                      std::to_string(kBuiltinHeight) + ", this one is " +
                                      std::to_string(file.image.width) + "x" + std::to_string(file.image.height));
   return std::move(file.image);
+#endif
+}
+
+constexpr const char* kFilmsManifest = "films.json";
+
+// What films mode reads from DIR/films.json: the films' size, spp, seed and reference device.
+struct FilmsManifest {
+  int width = 0, height = 0;
+  int64_t spp = 0;
+  uint64_t seed = 0;
+  std::string reference, reference_driver;
+};
+
+FilmsManifest read_films_manifest(const std::string& dir) {
+  const std::string path = (fs::path(dir) / kFilmsManifest).string();
+  if (!fs::is_regular_file(path))
+    throw Error(ExitCode::Usage, "--reference films: " + path + ": no such file (write one with --reference device "
+                                 "--save-reference-films DIR)");
+  if (fs::file_size(path) > (1u << 20)) throw Error(ExitCode::Usage, path + ": larger than a films manifest can be");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw Error(ExitCode::Usage, path + ": cannot read");
+  std::string text(fs::file_size(path), '\0');
+  const size_t got = std::fread(text.data(), 1, text.size(), f);
+  std::fclose(f);
+  text.resize(got);
+  FilmsManifest m;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    m.width = j.at("width").get<int>();
+    m.height = j.at("height").get<int>();
+    m.spp = j.at("spp").get<int64_t>();
+    m.seed = j.at("seed").get<uint64_t>();
+    m.reference = j.at("reference").get<std::string>();
+    m.reference_driver = j.at("reference_driver").get<std::string>();
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(ExitCode::Usage, path + ": not a clpt verify films manifest: " + e.what());
+  }
+  if (m.width < 1 || m.width > 16384 || m.height < 1 || m.height > 16384 || m.spp < 16 || m.spp % 16 != 0)
+    throw Error(ExitCode::Usage, path + ": its width, height or spp is out of range");
+  return m;
+}
+
+std::string films_manifest_json(const VerifyReport& report) {
+  nlohmann::json j = {{"width", report.width},        {"height", report.height},
+                      {"spp", report.spp},            {"seed", report.seed},
+                      {"reference", report.reference}, {"reference_driver", report.reference_driver},
+                      {"sampler", "grid"},            {"estimator", "book"}};
+  return j.dump(2) + "\n";
 }
 
 // Variance of the image mean per channel: sum of the pixels' variances of the mean / pixels^2.
@@ -116,6 +172,11 @@ Resolved resolve(const VerifyConfig& config, VerifyReport& report) {
   const DeviceInfo* pocl = find_pocl_cpu(all);
   r.mode = config.reference;
   if (r.mode == ReferenceMode::Auto) r.mode = pocl ? ReferenceMode::Device : ReferenceMode::Builtin;
+  if (!config.save_films_dir.empty() && r.mode != ReferenceMode::Device)
+    throw Error(ExitCode::Usage, "--save-reference-films: only a PoCL reference device's renders are saved "
+                                 "(--reference device)");
+  if (!config.save_films_dir.empty() && !fs::is_directory(config.save_films_dir))
+    throw Error(ExitCode::Usage, "--save-reference-films " + config.save_films_dir + ": no such directory");
   if (r.mode == ReferenceMode::Device && !pocl)
     throw Error(ExitCode::DeviceError, "--reference device: no PoCL CPU device (platform '" +
                                            std::string(kPoclPlatformName) +
@@ -127,13 +188,44 @@ Resolved resolve(const VerifyConfig& config, VerifyReport& report) {
   report.width = config.width.value_or(builtin ? kBuiltinWidth : kVerifyWidth);
   report.height = config.height.value_or(builtin ? kBuiltinHeight : kVerifyHeight);
   report.spp = config.spp.value_or(builtin ? kBuiltinSpp : kVerifySpp);
-  report.seed = config.seed;
+  report.seed = config.seed.value_or(1);
+  if (r.mode == ReferenceMode::Films) {
+    if (config.reference_dir.empty())
+      throw Error(ExitCode::Usage, "--reference films: --reference-dir names the films' directory");
+    const FilmsManifest m = read_films_manifest(config.reference_dir);
+    const auto clash = [&](const char* option, bool given_and_differs, const std::string& films_value) {
+      if (given_and_differs)
+        throw Error(ExitCode::Usage, std::string(option) + ": the films in " + config.reference_dir + " were rendered with " +
+                                         films_value + "; leave it out to use theirs");
+    };
+    clash("--width/--height", (config.width && *config.width != m.width) || (config.height && *config.height != m.height),
+          std::to_string(m.width) + "x" + std::to_string(m.height));
+    clash("--spp", config.spp && *config.spp != m.spp, std::to_string(m.spp) + " spp");
+    clash("--seed", config.seed && *config.seed != m.seed, "seed " + std::to_string(m.seed));
+    report.width = m.width;
+    report.height = m.height;
+    report.spp = m.spp;
+    report.seed = m.seed;
+    r.reference_dir = config.reference_dir;
+    report.reference = m.reference + " (films in " + config.reference_dir + ")";
+    report.reference_driver = m.reference_driver;
+    for (const std::string& scene : config.scenes)
+      for (ExecutionForm form : config.forms)
+        for (Precision precision : config.precisions) {
+          const fs::path film = fs::path(r.reference_dir) /
+                                reference_film_name(scene, execution_form_name(form), precision_name(precision));
+          if (!fs::is_regular_file(film))
+            throw Error(ExitCode::Usage, "--reference films: " + film.string() + ": no such file");
+        }
+  }
   if (builtin && (report.width != kBuiltinWidth || report.height != kBuiltinHeight))
     throw Error(ExitCode::Usage, "--width/--height " + std::to_string(report.width) + "x" +
                                      std::to_string(report.height) + ": the builtin references are " +
                                      std::to_string(kBuiltinWidth) + "x" + std::to_string(kBuiltinHeight) +
                                      ", so verify renders at that size without a PoCL reference device");
-  if (builtin) {
+  if (r.mode == ReferenceMode::Films) {
+    // resolved above
+  } else if (builtin) {
     r.reference_dir = config.reference_dir.empty() ? default_reference_dir() : config.reference_dir;
     for (const std::string& name : config.scenes) {
       const std::string path = reference_file(r.reference_dir, name);
@@ -157,7 +249,7 @@ Resolved resolve(const VerifyConfig& config, VerifyReport& report) {
     s.width = report.width;
     s.height = report.height;
     s.spp = report.spp;
-    s.seed = config.seed;
+    s.seed = report.seed;
     // The book's sampler and estimator, as gemspt rendered the references (and the scene files say).
     s.sampler = Sampler::Grid;
     s.estimator = "book";
@@ -269,13 +361,15 @@ VerifyReport run_verify(const VerifyConfig& config, const std::function<void(con
   VerifyReport report;
   const Resolved r = resolve(config, report);
   const bool builtin = r.mode == ReferenceMode::Builtin;
+  const bool films = r.mode == ReferenceMode::Films;
+  const bool device_reference = r.mode == ReferenceMode::Device;
   const FaultPlan no_faults;
   // Rows that cannot run: double precision on a device (or a reference) without fp64.
   for (const DeviceInfo& d : r.devices)
     if (!d.fp64 && std::count(config.precisions.begin(), config.precisions.end(), Precision::Double))
       report.notes.push_back("skipped: double precision on " + std::to_string(d.index) + " " + d.label() +
                              " (no cl_khr_fp64)");
-  const bool reference_fp64 = builtin || r.reference.fp64;
+  const bool reference_fp64 = !device_reference || r.reference.fp64;
   if (!reference_fp64 && std::count(config.precisions.begin(), config.precisions.end(), Precision::Double))
     report.notes.push_back("skipped: double precision everywhere: the reference " + r.reference.label() +
                            " has no cl_khr_fp64");
@@ -292,12 +386,21 @@ VerifyReport run_verify(const VerifyConfig& config, const std::function<void(con
         // The reference render of this scene x form x precision, shared by every device.
         std::optional<MeanVarianceImage> reference = gemspt;
         std::string reference_error;
-        if (!builtin) {
-          try {
+        const std::string film_name =
+            reference_film_name(scene_name, execution_form_name(form), precision_name(precision));
+        try {
+          if (films) {
+            reference = read_film_pfm((fs::path(r.reference_dir) / film_name).string());
+            if (reference->width != report.width || reference->height != report.height)
+              throw Error(ExitCode::Usage, film_name + " is not " + std::to_string(report.width) + "x" +
+                                               std::to_string(report.height) + " as films.json says");
+          } else if (device_reference) {
             reference = render(scene, form, precision, r.reference, no_faults).image;
-          } catch (const Error& e) {
-            reference_error = "the reference render failed: " + first_line(e.what());
+            if (!config.save_films_dir.empty())
+              write_film_pfm((fs::path(config.save_films_dir) / film_name).string(), *reference);
           }
+        } catch (const Error& e) {
+          reference_error = "the reference " + std::string(films ? "film" : "render") + " failed: " + first_line(e.what());
         }
         for (size_t i = 0; i < r.devices.size(); ++i) {
           const DeviceInfo& d = r.devices[i];
@@ -307,7 +410,7 @@ VerifyReport run_verify(const VerifyConfig& config, const std::function<void(con
           row.position = i;
           row.device = d.label();
           row.driver = d.driver_version;
-          row.is_reference_device = !builtin && d.id == r.reference.id;
+          row.is_reference_device = device_reference && d.id == r.reference.id;
           row.scene = scene_name;
           row.form = execution_form_name(form);
           row.precision = precision_name(precision);
@@ -318,7 +421,7 @@ VerifyReport run_verify(const VerifyConfig& config, const std::function<void(con
               const Rendered got = render(scene, form, precision, d, r.faults.for_device(i));
               row.paths_per_s = got.paths_per_s;
               const CompareResult result = compare_renders(got.image, *reference, report.compare);
-              fill_row_statistics(result, !builtin, row);
+              fill_row_statistics(result, !builtin, row);  // films: the same seed too
               row.shift_z_2pct = shift_z_2pct(got.image, *reference, result);
             } catch (const Error& e) {
               row.error = first_line(e.what());
@@ -333,7 +436,23 @@ VerifyReport run_verify(const VerifyConfig& config, const std::function<void(con
         }
       }
   }
+  if (!config.save_films_dir.empty())
+    write_file_atomically((fs::path(config.save_films_dir) / kFilmsManifest).string(), films_manifest_json(report),
+                          "--save-reference-films");
   return report;
+}
+
+const char* reference_mode_name(ReferenceMode mode) {
+  switch (mode) {
+    case ReferenceMode::Device: return "device";
+    case ReferenceMode::Builtin: return "builtin";
+    case ReferenceMode::Films: return "films";
+    default: return "auto";
+  }
+}
+
+std::string reference_film_name(const std::string& scene, const std::string& form, const std::string& precision) {
+  return "verify_" + scene + "_" + form + "_" + precision + ".pfm";
 }
 
 std::string verify_header(const VerifyReport& rep) {
@@ -393,7 +512,7 @@ std::string verify_json(const VerifyReport& rep) {
   // nlohmann writes NaN and infinities as null; be explicit so the contract does not hang on it.
   const auto number = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
   json j;
-  j["reference_mode"] = rep.mode == ReferenceMode::Builtin ? "builtin" : "device";
+  j["reference_mode"] = reference_mode_name(rep.mode);
   j["reference"] = rep.reference;
   j["reference_driver"] = rep.reference_driver;
   j["width"] = rep.width;

@@ -6,7 +6,12 @@
 //                 precision, size, spp and seed (once per scene x form x precision, shared by
 //                 every tested device); the same-seed fraction is reported beside the verdict
 //   builtin mode  the reference is gemspt's converged 160x120 render of the scene, shipped in
-//                 tests/reference (used when no PoCL device exists, or when asked for)
+//                 tests/reference (used when no PoCL device exists, or when asked for; needs a
+//                 build with OpenImageIO, which reads its EXRs)
+//   films mode    the reference is a directory of films a PoCL device rendered before, on another
+//                 machine (`--save-reference-films DIR` in device mode; scripts/offline-bundle.sh),
+//                 with the size, spp and seed its films.json records: device mode's comparison,
+//                 for a machine without PoCL (scripts/gpu-report.sh)
 // The verdict is the statistical one only: a correct device may round differently from PoCL, so
 // the same-seed fraction is information, not a criterion.
 #pragma once
@@ -23,7 +28,8 @@
 
 namespace clpt {
 
-enum class ReferenceMode { Auto, Device, Builtin };
+enum class ReferenceMode { Auto, Device, Builtin, Films };
+const char* reference_mode_name(ReferenceMode mode);
 
 // Device mode's default image: 64x48 at 1280 spp, 3.9 M samples a render. Why that many: the
 // weakest test of a shift in one channel is the image mean, z = shift / sqrt(var_dev + var_ref)
@@ -57,10 +63,19 @@ struct VerifyConfig {
   ReferenceMode reference = ReferenceMode::Auto;
   std::optional<int> width, height;  // unset: the mode's default
   std::optional<int64_t> spp;        // unset: the mode's default; a multiple of 16 (grid sampler)
-  uint64_t seed = 1;
+  std::optional<uint64_t> seed;      // unset: 1 (films mode: the films' own)
   std::string scene_dir;      // holds NAME.toml; "" = default_scene_dir()
-  std::string reference_dir;  // holds gemspt_NAME_160x120.exr; "" = default_reference_dir()
+  // Builtin mode: holds gemspt_NAME_160x120.exr ("" = default_reference_dir()). Films mode: the
+  // films' directory (required).
+  std::string reference_dir;
+  // Device mode: also write each reference render into this existing directory as a raw film
+  // (reference_film_name) and, at the end, films.json: what films mode reads.
+  std::string save_films_dir;
 };
+
+// The file of one reference film in a films directory: verify_SCENE_FORM_PRECISION.pfm (its
+// variance beside it, .var.pfm).
+std::string reference_film_name(const std::string& scene, const std::string& form, const std::string& precision);
 
 // The statistics of one row, from compare_renders(device, reference).
 struct VerifyRow {
@@ -90,8 +105,8 @@ struct VerifyRow {
 
 struct VerifyReport {
   ReferenceMode mode = ReferenceMode::Device;  // as run (never Auto)
-  std::string reference;  // the reference device's label, or the directory of the gemspt images
-  std::string reference_driver;
+  std::string reference;  // the reference device's label, or the directory of the gemspt images or films
+  std::string reference_driver;  // device and films modes
   int width = 0, height = 0;
   int64_t spp = 0;
   uint64_t seed = 0;
