@@ -14,10 +14,10 @@ std::function<int()> add_bench_command(CLI::App& app);
 std::function<int()> add_cache_command(CLI::App& app);
 std::function<int()> add_scene_transform_command(CLI::App& app);
 std::function<int()> add_kernels_command(CLI::App& app);
+std::function<int()> add_verify_command(CLI::App& app);
 #ifdef CLPT_WITH_OIIO
 std::function<int()> add_compare_command(CLI::App& app);
 std::function<int()> add_tradeoff_command(CLI::App& app);
-std::function<int()> add_verify_command(CLI::App& app);
 #endif
 
 }  // namespace clpt
