@@ -3,10 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "render/error_estimate.h"
 #include "render/film.h"
+#include "render/film_raw.h"
+#include "util/error.h"
 #include "render/pass_schedule.h"
 #include "render/render_session.h"
 
@@ -228,6 +233,48 @@ TEST(PassSchedule, SampleCountAndTimeLimitStopTheRender) {
   measured.passes = 1;
   measured.elapsed_s = 1.5;
   EXPECT_EQ(plan_next_pass(film_with_halves(8, 8), request, measured, state).stop, StopReason::TimeLimit);
+}
+
+// Raw films (render/film_raw.h): what write_film_pfm writes, read_film_pfm reads back bit for
+// bit, rows in order; a file that lies about its size or is cut short is refused, naming it.
+TEST(RawFilm, PfmRoundTripAndRefusals) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "clpt_test_raw_film";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  MeanVarianceImage image;
+  image.width = 3;
+  image.height = 2;
+  for (int i = 0; i < 18; ++i) {
+    image.mean.push_back(0.25f * float(i) + 1e-7f);
+    image.variance.push_back(1e-3f * float(i * i));
+  }
+  const std::string path = (dir / "film.pfm").string();
+  write_film_pfm(path, image);
+  EXPECT_EQ(variance_pfm_path(path), (dir / "film.var.pfm").string());
+  const MeanVarianceImage back = read_film_pfm(path);
+  EXPECT_EQ(back.width, 3);
+  EXPECT_EQ(back.height, 2);
+  EXPECT_EQ(back.mean, image.mean);
+  EXPECT_EQ(back.variance, image.variance);
+
+  const auto expect_refused = [&](const std::string& bytes, const std::string& needle) {
+    const std::string bad = (dir / "bad.pfm").string();
+    std::ofstream(bad, std::ios::binary) << bytes;
+    std::filesystem::copy_file(dir / "film.var.pfm", dir / "bad.var.pfm",
+                               std::filesystem::copy_options::overwrite_existing);
+    try {
+      read_film_pfm(bad);
+      ADD_FAILURE() << "accepted: " << needle;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  expect_refused("Pf\n3 2\n-1.0\n", "does not start with 'PF'");
+  expect_refused("PF\n3 2\n-1.0\n" + std::string(10, 'x'), "must hold 72 bytes");
+  expect_refused("PF\n100000 2\n-1.0\n", "is not in 1..16384");
+  expect_refused("PF\n3 2\n0\n", "is not a non-zero number");
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
