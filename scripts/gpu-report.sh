@@ -147,7 +147,7 @@ clpt=$build/clpt
 step build bash -c "cmake -S '$src' -B '$build' -DCMAKE_BUILD_TYPE=Release -DCLPT_WITH_OIIO=OFF \
     -DCLPT_BUILD_TESTS=OFF -DCLPT_WITH_MPI=OFF -DCLPT_WITH_EMBREE=OFF -DCLPT_ASSIMP_WITHOUT_CONFIG=ON \
     -DCMAKE_PREFIX_PATH='$prefix' -DCMAKE_IGNORE_PREFIX_PATH=/usr -DCMAKE_POLICY_VERSION_MINIMUM=3.5 \
-    && cmake --build '$build' -j $(nproc) --target clpt"
+    && cmake --build '$build' -j $(nproc) --target clpt -- -k"
 if [[ ! -x $clpt ]]; then
   say "gpu-report: the build failed; see report.log"
   printf '# clpt GPU report\n\nThe build failed; report.log has its output.\n' >"$out/summary.md"

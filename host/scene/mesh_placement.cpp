@@ -16,7 +16,7 @@ Matrix3 multiply(const Matrix3& a, const Matrix3& b) {
   return out;
 }
 
-Vec3 apply(const Matrix3& m, const Vec3& v) {
+Vec3 multiply(const Matrix3& m, const Vec3& v) {
   return {dot(Vec3{m[0][0], m[0][1], m[0][2]}, v), dot(Vec3{m[1][0], m[1][1], m[1][2]}, v),
           dot(Vec3{m[2][0], m[2][1], m[2][2]}, v)};
 }
@@ -41,7 +41,7 @@ Matrix3 rotation_xyz(const Vec3& degrees) {
 
 // The inverse transpose of rotate * diag(scale) applied to n, normalised.
 Vec3 normal_with(const Matrix3& rotate, const Vec3& scale, const Vec3& n) {
-  return normalize(apply(rotate, Vec3{n[0] / scale[0], n[1] / scale[1], n[2] / scale[2]}));
+  return normalize(multiply(rotate, Vec3{n[0] / scale[0], n[1] / scale[1], n[2] / scale[2]}));
 }
 
 }  // namespace
@@ -53,7 +53,7 @@ Matrix3 placement_matrix(const MeshPlacement& placement) {
 }
 
 Vec3 place_point(const MeshPlacement& placement, const Vec3& p) {
-  return add(apply(placement_matrix(placement), p), placement.translate);
+  return add(multiply(placement_matrix(placement), p), placement.translate);
 }
 
 Vec3 place_normal(const MeshPlacement& placement, const Vec3& n) {
@@ -67,7 +67,7 @@ size_t place_mesh(const LocalMesh& local, TriangleMesh& mesh) {
   mesh.normals.clear();
   mesh.triangles.clear();
   mesh.positions.reserve(local.positions.size());
-  for (const Vec3& p : local.positions) mesh.positions.push_back(add(apply(linear, p), mesh.placement.translate));
+  for (const Vec3& p : local.positions) mesh.positions.push_back(add(multiply(linear, p), mesh.placement.translate));
   mesh.normals.reserve(local.normals.size());
   for (const Vec3& n : local.normals)
     mesh.normals.push_back(normal_with(rotate, mesh.placement.scale, n));
