@@ -1,4 +1,7 @@
 #!/usr/bin/env bash
+# The bundle a GPU machine without a package registry builds clpt from: Debian packages unpacked
+# into a prefix, the tree, and PoCL's reference films (for scripts/gpu-report.sh).
+#
 # scripts/offline-bundle.sh DIR [--verify-args "ARGS"]
 #
 # Gathers, on a Debian 12 machine with a package registry, what a machine without one (a GPU box

@@ -42,8 +42,9 @@ bytes=$(du -sb bundle | cut -f1)
 CLPT_REPORT_WORK="$work/report-work" "$src/scripts/gpu-report.sh" bundle out --quick >report.out 2>&1
 status=$?
 [[ $status -eq 0 ]] || { fail "(b) gpu-report.sh exited $status"; show report.out; [[ -f out/report.log ]] && tail -40 out/report.log | show; }
-expected="bench.json first-picture.pfm first-picture.var.pfm kernel-budget.tsv report.log summary.md verify.json"
-[[ "$(ls out 2>/dev/null | xargs)" == "$expected" ]] || fail "(b) files: $(ls out | xargs), expected $expected"
+expected="out/bench.json out/first-picture.pfm out/first-picture.var.pfm out/kernel-budget.tsv out/report.log"
+expected+=" out/summary.md out/verify.json"
+[[ "$(ls -d out/* 2>/dev/null | xargs)" == "$expected" ]] || fail "(b) files: $(ls -d out/* | xargs), expected $expected"
 for f in out/*; do
   [[ $(stat -c %s "$f") -lt 16000000 ]] || fail "(b) $f is 16 MB or more"
 done

@@ -36,11 +36,25 @@ TEST(KernelBudget, ParsesNvidiaPtxasLinesPerKernel) {
   EXPECT_EQ(rows[1].stack_bytes, 0);
   EXPECT_EQ(rows[2].registers, -1);
   EXPECT_EQ(rows[2].stack_bytes, -1);
+
+  // The same figures prefixed as a driver may relay them.
+  std::vector<KernelBudgetRow> relayed(1);
+  relayed[0].kernel = "wf_shade";
+  parse_nvidia_build_log(
+      "ptxas info    : Compiling entry function 'wf_shade' for 'sm_90'\n"
+      "ptxas info    : Function properties for wf_shade\n"
+      "ptxas         .     192 bytes stack frame, 8 bytes spill stores, 12 bytes spill loads\n"
+      "ptxas info    : Used 166 registers, used 0 barriers, 192 bytes cumulative stack size\n",
+      relayed);
+  EXPECT_EQ(relayed[0].registers, 166);
+  EXPECT_EQ(relayed[0].stack_bytes, 192);
+  EXPECT_EQ(relayed[0].spill_store_bytes, 8);
+  EXPECT_EQ(relayed[0].spill_load_bytes, 12);
 }
 
 TEST(KernelBudget, TabulatesEveryKernelOfEveryVariantOnTheTestDevice) {
   const Scene diffuse = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/diffuse.toml");
-  const auto rows = measure_kernel_budget(test_device().device(), diffuse);
+  const auto rows = measure_kernel_budget(test::test_device().device(), diffuse);
   ASSERT_FALSE(rows.empty());
   bool megakernel = false, wavefront_shade = false;
   for (const KernelBudgetRow& r : rows) {

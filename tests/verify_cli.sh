@@ -110,11 +110,25 @@ expect_usage "--precisions: quad not in {fast,robust,double}" --precisions robus
 expect_usage "--forms: mega not in {megakernel,wavefront}" --forms mega
 expect_usage "--device '7': no such device" --device 7
 expect_usage "--spp 100: verify renders with the book's grid sampler" --spp 100
-expect_usage "--reference: remote not in {auto,device,builtin}" --reference remote
+expect_usage "--reference: remote not in {auto,device,builtin,films}" --reference remote
 expect_usage "reference $work/nowhere/gemspt_glass_160x120.exr: no such file" --reference builtin \
   --reference-dir "$work/nowhere" --scenes glass
 expect_usage "--width/--height 64x120: the builtin references are 160x120" --reference builtin --width 64
 expect_usage "--json $work/nowhere/v.json: directory '$work/nowhere' does not exist" --json "$work/nowhere/v.json"
+# Films mode (its end-to-end run is tests/gpu_report_cli.sh): what it needs and what may not clash.
+expect_usage "--reference films: --reference-dir names the films' directory" --reference films
+expect_usage "--reference films: $work/nowhere/films.json: no such file" --reference films --reference-dir "$work/nowhere"
+expect_usage "--save-reference-films: only a PoCL reference device's renders are saved" --reference builtin \
+  --save-reference-films "$work"
+expect_usage "--save-reference-films $work/nowhere: no such directory" --reference device --save-reference-films "$work/nowhere"
+mkdir -p films && "$clpt" verify --device cpu --reference device --save-reference-films films --scenes diffuse \
+  --forms megakernel --precisions robust --width 16 --height 12 --spp 64 -q >films.out 2>&1 ||
+  { fail "saving films"; show films.out; }
+expect_usage "--spp: the films in films were rendered with 64 spp" --reference films --reference-dir films --spp 128
+"$clpt" verify --device cpu --reference films --reference-dir films >films2.out 2>&1
+status=$?
+[[ $status -eq 0 ]] && grep -q "^verify: 1 of 1 rows passed$" films2.out && grep -q "^skipped: glass, wavefront, double: no reference film" films2.out ||
+  { fail "films mode with a subset of the matrix: exit $status"; show films2.out; }
 CLPT_INJECT_FAULT=perturb:0:X:1.02 expect_usage "CLPT_INJECT_FAULT='perturb:0:X:1.02': entry 'perturb:0:X:1.02'" \
   --scenes diffuse
 

@@ -1,6 +1,8 @@
 #include "tools/kernel_budget.h"
 
+#include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <sstream>
 
@@ -25,6 +27,16 @@ std::string quoted_after(const std::string& line, size_t from) {
   return b == std::string::npos ? "" : line.substr(a + 1, b - a - 1);
 }
 
+// The integer just before `words` on the line ("Used 230 registers" -> 230), or -1.
+int number_before(const std::string& line, const char* words) {
+  size_t at = line.find(words);
+  if (at == std::string::npos) return -1;
+  while (at > 0 && line[at - 1] == ' ') --at;
+  size_t begin = at;
+  while (begin > 0 && std::isdigit(static_cast<unsigned char>(line[begin - 1]))) --begin;
+  return begin == at ? -1 : std::atoi(line.c_str() + begin);
+}
+
 }  // namespace
 
 void parse_nvidia_build_log(const std::string& log, std::vector<KernelBudgetRow>& rows) {
@@ -43,21 +55,22 @@ void parse_nvidia_build_log(const std::string& log, std::vector<KernelBudgetRow>
       current = line.substr(at + 24);
       while (!current.empty() && (current.back() == ' ' || current.back() == '\r')) current.pop_back();
     } else if (KernelBudgetRow* r = row_of(current)) {
-      int a = 0, b = 0, c = 0;
-      if (std::sscanf(line.c_str(), " %d bytes stack frame, %d bytes spill stores, %d bytes spill loads", &a, &b,
-                      &c) == 3) {
-        r->stack_bytes = a;
-        r->spill_store_bytes = b;
-        r->spill_load_bytes = c;
-      } else if ((at = line.find("Used ")) != std::string::npos && std::sscanf(line.c_str() + at, "Used %d registers", &a) == 1) {
-        r->registers = a;
+      // The figures are read by their words, wherever they sit on the line (a driver may indent
+      // or prefix them differently from ptxas's own -v output).
+      if (line.find("stack frame") != std::string::npos) {
+        r->stack_bytes = number_before(line, "bytes stack frame");
+        r->spill_store_bytes = number_before(line, "bytes spill stores");
+        r->spill_load_bytes = number_before(line, "bytes spill loads");
+      } else if (line.find("registers") != std::string::npos) {
+        r->registers = number_before(line, "registers");
       }
     }
   }
 }
 
 std::vector<KernelBudgetRow> measure_kernel_budget(const DeviceInfo& device, const Scene& diffuse,
-                                                   void (*on_variant)(const std::string&)) {
+                                                   void (*on_variant)(const std::string&),
+                                                   void (*on_log)(const std::string&)) {
   DeviceContext ctx(device);  // no kernel cache: every program is compiled, so the log is fresh
   std::vector<KernelBudgetRow> all;
   for (const KernelVariant& v : covering_kernel_variants()) {
@@ -84,7 +97,11 @@ std::vector<KernelBudgetRow> measure_kernel_budget(const DeviceInfo& device, con
       row.preferred_multiple = res.preferred_multiple;
       rows.push_back(row);
     }
-    if (is_nvidia(device)) parse_nvidia_build_log(ctx.build_log(built), rows);
+    if (is_nvidia(device)) {
+      const std::string log = ctx.build_log(built);
+      parse_nvidia_build_log(log, rows);
+      if (on_log && all.empty()) on_log(log);
+    }
     all.insert(all.end(), rows.begin(), rows.end());
   }
   return all;

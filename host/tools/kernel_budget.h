@@ -25,7 +25,8 @@ struct KernelBudgetRow {
   int registers = -1, stack_bytes = -1, spill_store_bytes = -1, spill_load_bytes = -1;
 };
 
-// What NVIDIA's ptxas reports per entry function in a build log made with -cl-nv-verbose:
+// What NVIDIA's ptxas reports per entry function in a build log made with -cl-nv-verbose (the
+// lines as ptxas -v writes them; the figures are found by their words):
 //   ptxas info    : Compiling entry function 'NAME' for 'sm_90'
 //   ptxas info    : Function properties for NAME
 //       S bytes stack frame, T bytes spill stores, L bytes spill loads
@@ -34,9 +35,12 @@ struct KernelBudgetRow {
 void parse_nvidia_build_log(const std::string& log, std::vector<KernelBudgetRow>& rows);
 
 // Builds every covering variant of `diffuse` (scenes/diffuse.toml) on `device` and returns a row
-// per kernel, variant by variant. on_variant sees each variant's name before its build (progress).
+// per kernel, variant by variant. on_variant sees each variant's name before its build (progress);
+// on_log sees the first variant's build log where it is parsed (NVIDIA), so that a report shows
+// the lines the figures come from.
 std::vector<KernelBudgetRow> measure_kernel_budget(const DeviceInfo& device, const Scene& diffuse,
-                                                   void (*on_variant)(const std::string&) = nullptr);
+                                                   void (*on_variant)(const std::string&) = nullptr,
+                                                   void (*on_log)(const std::string&) = nullptr);
 
 // The rows as a TAB-separated table with a header; blank where a figure is unknown.
 std::string kernel_budget_tsv(const std::vector<KernelBudgetRow>& rows);
