@@ -17,6 +17,8 @@ CLPT_TEST_PACKAGES=(libgtest-dev python3 oclgrind clang-14 libclc-14)
 CLPT_FUZZ_PACKAGES=(clang libclang-rt-14-dev assimp-testmodels)
 # Mesh files of [[mesh]] tables (host/scene/mesh_file.cpp).
 CLPT_PACKAGES+=(libassimp-dev)
+# glTF scenes (host/scene/gltf_*.cpp, docs/gltf.md): tinygltf, header-only, over nlohmann-json.
+CLPT_PACKAGES+=(libtinygltf-dev)
 
 clpt_log() { printf 'clpt: %s\n' "$*" >&2; }
 

@@ -47,6 +47,7 @@ CLPT_BUNDLE_PACKAGES=(
   libtomlplusplus3 libtomlplusplus-dev                    # TOML scenes
   libcli11-dev nlohmann-json3-dev                         # the command line; bench and verify JSON
   libassimp5 libassimp-dev libdraco7 libminizip1          # mesh files, and what libassimp.so.5 links
+  libtinygltf-dev                                         # glTF scenes (header-only, over nlohmann-json)
 )
 [[ -f "$CLPT_ROOT/scenes/meshes/torus_knot.ply" ]] || python3 "$CLPT_ROOT/scripts/make_mesh_scene.py" >&2
 

@@ -38,6 +38,7 @@ struct RenderOptions {
   std::optional<uint64_t> seed;
   std::string device;
   std::optional<int> width, height, max_bounces;
+  std::optional<std::string> camera;  // --camera (glTF scenes)
   std::optional<std::string> sampler;
   std::string precision = "robust";
   std::optional<std::string> intersection;
@@ -260,7 +261,7 @@ int run(const RenderOptions& o) {
   const std::string out = writes ? output_path(o) : "";
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (writes && !o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
-  Scene scene = load_scene_file(o.scene_path);
+  Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
 
@@ -321,7 +322,7 @@ int run(const RenderOptions& o) {
 std::function<int()> add_render_command(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene file to OUT.exr (+ OUT.png preview)");
-  cmd->add_option("scene", o->scene_path, "Scene file (TOML), e.g. scenes/diffuse.toml")->required();
+  cmd->add_option("scene", o->scene_path, "Scene file: TOML (e.g. scenes/diffuse.toml) or glTF 2.0 (.gltf, .glb)")->required();
   cmd->add_option("-o,--output", o->output, "Output EXR (default: SCENE_STEM.exr here); .pfm for a raw film");
 #ifdef CLPT_WITH_OIIO
   cmd->add_option("--exr-compression", o->exr_compression,
@@ -344,6 +345,9 @@ std::function<int()> add_render_command(CLI::App& app) {
                   "several: all, or a comma list (0,1)");
   cmd->add_option("--width", o->width, "Image width in pixels")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", o->height, "Image height in pixels")->check(CLI::Range(1, 16384));
+  cmd->add_option("--camera", o->camera,
+                  "glTF scenes: the camera to render, by index into the file's cameras or by its (or its node's) "
+                  "name (default: the first met in node order; docs/gltf.md)");
   cmd->add_option("--max-bounces", o->max_bounces, "Bounce rays after the camera ray (book: 9)")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--sampler", o->sampler,

@@ -106,6 +106,10 @@ struct TriangleMesh {
   // The table's scale/rotate_deg/translate (positions and normals already include it); for an
   // inline mesh written back by the scene writer the positions are written as they are.
   MeshPlacement placement;
+  // A glTF primitive (docs/gltf.md): "nodes[N] meshes[M].primitives[P]" of the glTF file `file`
+  // (file_hash: that file's with its buffers), placed by the node's world transform and, under a
+  // TOML [[gltf]] table, by the table's placement (kept in `placement`). "" for [[mesh]] meshes.
+  std::string gltf_element;
 };
 
 // Pinhole camera. The book's camera: a sensor sensor_height units high placed sensor_distance in

@@ -16,8 +16,11 @@
 #include <optional>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
+#include "scene/gltf_error.h"
+#include "scene/gltf_loader.h"
 #include "scene/mesh_file.h"
 #include "scene/mesh_placement.h"
 #include "scene/scene_validate.h"
@@ -571,7 +574,36 @@ TriangleMesh read_mesh(const TableReader& mesh, size_t index, const SourceMap& s
   return m;
 }
 
-// The array of tables under `key` ([[sphere]], [[mesh]]), each element read by
+// One [[gltf]] table: the glTF file's meshes and lights placed by scale, rotate_deg and translate
+// as [[mesh]] places a mesh file; every GltfError gets the `file` value's position and the file's
+// name as the scene writes it, and so do the glTF's warnings.
+GltfContents read_gltf(const TableReader& table, const SourceMap& sources, std::vector<std::string>& warnings,
+                       std::vector<std::pair<std::string, std::string>>& gltf_files) {
+  table.reject_unknown_keys({"file", "scale", "rotate_deg", "translate"});
+  const auto file = table.string("file");
+  if (!file) table.fail_missing("file");
+  MeshPlacement placement;
+  placement.scale = read_mesh_scale(table);
+  if (const auto r = table.vec3("rotate_deg")) placement.rotate_deg = *r;
+  if (const auto t = table.vec3("translate")) placement.translate = *t;
+  scene_detail::check_mesh_placement(placement, table.path(), sources);
+  const SourcePosition at = table.position_of(*table.get("file"));
+  const std::string prefix = at.str() + ": " + table.key_path("file") + ": " + *file + ": ";
+  try {
+    GltfContents contents = load_gltf_contents(resolve_mesh_path(sources.file(), *file), placement);
+    for (TriangleMesh& m : contents.meshes) {
+      m.file = *file;
+      m.where = table.where();
+    }
+    for (const std::string& w : contents.warnings) warnings.push_back(prefix + w);
+    gltf_files.emplace_back(*file, contents.hash);
+    return contents;
+  } catch (const GltfError& e) {
+    throw Error(ExitCode::BadScene, prefix + e.what());
+  }
+}
+
+// The array of tables under `key` ([[sphere]], [[mesh]], [[gltf]]), each element read by
 // read(reader, index); none when the key is absent.
 template <typename Read>
 auto read_table_array(const TableReader& top, const std::string& key, Read read) {
@@ -592,19 +624,25 @@ auto read_table_array(const TableReader& top, const std::string& key, Read read)
   return out;
 }
 
-// The mesh files' names and hashes chained onto the scene file's hash (Scene::file_hash).
-std::string scene_hash(const std::string& text, const std::vector<TriangleMesh>& meshes) {
+// The mesh files' names and hashes chained onto the scene file's hash (Scene::file_hash), then
+// each [[gltf]] file's (its name and the hash over it and its buffers), so that a [[gltf]]
+// placing only lights counts too.
+std::string scene_hash(const std::string& text, const std::vector<TriangleMesh>& meshes,
+                       const std::vector<std::pair<std::string, std::string>>& gltf_files) {
   uint64_t hash = fnv1a64(text);
   for (const TriangleMesh& m : meshes)
     if (!m.file.empty()) hash = fnv1a64(m.file + '\0' + m.file_hash + '\n', hash);
+  for (const auto& [file, file_hash] : gltf_files) hash = fnv1a64(file + '\0' + file_hash + '\n', hash);
   return hex64(hash);
 }
 
 // Structure and types of the whole document, then the semantic rules.
-Scene build_scene(const toml::table& root, const std::string& file) {
+// `gltf_files`: each [[gltf]] table's file and hash, for scene_hash.
+Scene build_scene(const toml::table& root, const std::string& file,
+                  std::vector<std::pair<std::string, std::string>>& gltf_files) {
   SourceMap sources(file);
   const TableReader top(root, "", SourcePosition{file, 1, 1}, sources);
-  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh"});
+  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh", "gltf"});
   Scene scene;
   if (const auto image = top.table("image")) read_image(*image, scene.settings);
   if (const auto render = top.table("render")) read_render(*render, scene.settings);
@@ -615,6 +653,13 @@ Scene build_scene(const toml::table& root, const std::string& file) {
   scene.meshes = read_table_array(top, "mesh", [&](const TableReader& mesh, size_t i) {
     return read_mesh(mesh, i, sources, scene.warnings);
   });
+  const auto gltfs = read_table_array(top, "gltf", [&](const TableReader& gltf, size_t) {
+    return read_gltf(gltf, sources, scene.warnings, gltf_files);
+  });
+  for (const GltfContents& contents : gltfs) {
+    scene.meshes.insert(scene.meshes.end(), contents.meshes.begin(), contents.meshes.end());
+    scene.lights.insert(scene.lights.end(), contents.lights.begin(), contents.lights.end());
+  }
   if (scene.spheres.empty() && scene.meshes.empty()) {
     const toml::node* sphere = top.get("sphere");
     fail(sphere ? top.position_of(*sphere) : top.where(), "sphere", "the scene has no spheres or meshes");
@@ -681,15 +726,22 @@ std::string read_whole_file(const std::string& path) {
 
 }  // namespace
 
-Scene load_scene_file(const std::string& path) {
-  return load_scene_string(read_whole_file(path), path);
+Scene load_scene_file(const std::string& path, const GltfView& view) {
+  const std::string bytes = read_whole_file(path);
+  if (is_gltf_file(path, bytes)) return load_gltf_scene(bytes, path, view);
+  if (view.camera)
+    throw Error(ExitCode::Usage, "--camera " + *view.camera + ": " + path +
+                                     " is a TOML scene, whose one camera is its [camera] table (--camera chooses among a "
+                                     "glTF file's cameras)");
+  return load_scene_string(bytes, path);
 }
 
 Scene load_scene_string(const std::string& text, const std::string& name) {
   const toml::table root = parse_toml(text, name);
-  Scene scene = build_scene(root, name);
+  std::vector<std::pair<std::string, std::string>> gltf_files;
+  Scene scene = build_scene(root, name, gltf_files);
   scene.file = name;
-  scene.file_hash = scene_hash(text, scene.meshes);
+  scene.file_hash = scene_hash(text, scene.meshes, gltf_files);
   return scene;
 }
 

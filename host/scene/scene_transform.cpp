@@ -33,6 +33,16 @@ Scene scale_scene(const Scene& scene, double factor) {
     m.placement.scale = scale(m.placement.scale, factor);
     m.placement.translate = scale(m.placement.translate, factor);
   }
+  // Punctual lights: positions and ranges scale; a point or spot light's intensity scales by
+  // factor^2, so that the irradiance it gives at the scaled distances (inverse square) and so the
+  // image stay the same. Directions, and a directional light's irradiance, are unchanged. An
+  // orthographic view's height scales with the scene.
+  for (PunctualLight& l : out.lights) {
+    l.position = scale(l.position, factor);
+    l.range *= factor;
+    if (l.type != LightType::Directional) l.intensity = scale(l.intensity, factor * factor);
+  }
+  out.camera.ortho_height *= factor;
   out.camera.position = scale(out.camera.position, factor);
   out.camera.look_at = scale(out.camera.look_at, factor);
   return out;
@@ -47,6 +57,7 @@ Scene translate_scene(const Scene& scene, const Vec3& offset) {
     for (Vec3& p : m.positions) p = add(p, offset);
     m.placement.translate = add(m.placement.translate, offset);
   }
+  for (PunctualLight& l : out.lights) l.position = add(l.position, offset);
   out.camera.position = add(out.camera.position, offset);
   out.camera.look_at = add(out.camera.look_at, offset);
   return out;
@@ -58,7 +69,9 @@ Scene scale_emission(const Scene& scene, double factor) {
   for (Sphere& s : out.spheres)
     if (s.material.type == MaterialType::Emitter) s.material.emission = scale(s.material.emission, factor);
   for (TriangleMesh& m : out.meshes)
-    if (m.material.type == MaterialType::Emitter) m.material.emission = scale(m.material.emission, factor);
+    if (m.material.type == MaterialType::Emitter || m.material.type == MaterialType::Pbr)
+      m.material.emission = scale(m.material.emission, factor);
+  for (PunctualLight& l : out.lights) l.intensity = scale(l.intensity, factor);
   return out;
 }
 

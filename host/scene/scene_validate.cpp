@@ -226,11 +226,16 @@ void check_settings(const RenderSettings& settings, const SourceMap& sources) {
             "unknown light sampling '" + settings.light_sampling + "' (expected 'cap' or 'sphere')");
 }
 
+// Punctual lights and emissive Pbr surfaces (a [[gltf]] table's) count as the scene's light too.
 void require_emitter(const Scene& scene, const SourceMap& sources) {
+  if (!scene.lights.empty()) return;
   for (const Sphere& sphere : scene.spheres)
     if (sphere.material.type == MaterialType::Emitter) return;
-  for (const TriangleMesh& mesh : scene.meshes)
+  for (const TriangleMesh& mesh : scene.meshes) {
     if (mesh.material.type == MaterialType::Emitter) return;
+    const Vec3& e = mesh.material.emission;
+    if (mesh.material.type == MaterialType::Pbr && (e[0] > 0 || e[1] > 0 || e[2] > 0)) return;
+  }
   fail(SourcePosition{sources.file(), 1, 1}, scene.spheres.empty() ? "mesh" : "sphere",
        "the scene has no emitter, so every image would be black");
 }

@@ -12,6 +12,7 @@
 #include "scene/mesh_file.h"
 
 #include "util/atomic_file.h"
+#include "util/error.h"
 
 namespace clpt {
 namespace {
@@ -84,9 +85,23 @@ toml::table mesh_table(const TriangleMesh& m, const std::string& scene_file, con
   return t;
 }
 
+// glTF content cannot be written back yet (scene_writer.h). A glTF light carries no line in
+// `where` (TOML positions always do).
+void refuse_gltf_content(const Scene& scene) {
+  std::string source;
+  for (const TriangleMesh& m : scene.meshes)
+    if (!m.gltf_element.empty()) source = m.file;
+  for (const PunctualLight& l : scene.lights)
+    if (l.where.line == 0) source = l.where.file;
+  if (source.empty()) return;
+  throw Error(ExitCode::Usage, scene.file + ": the scene holds glTF content (from " + source +
+                                   "), which clpt cannot write back as a TOML scene yet");
+}
+
 }  // namespace
 
 std::string scene_to_toml(const Scene& scene, const std::string& header, const std::string& written_as) {
+  refuse_gltf_content(scene);
   const RenderSettings& r = scene.settings;
   const Camera& c = scene.camera;
   toml::table root;

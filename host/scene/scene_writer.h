@@ -14,6 +14,9 @@ namespace clpt {
 // relative to written_as's directory, or absolute where no relative name exists) with its
 // composed placement; a mesh written inline is written inline, its world positions and normals
 // as they are, with no placement.
+// A scene with glTF content (a glTF file rendered whole, or a TOML scene's [[gltf]] tables) is
+// refused with Error(Usage) naming the file: its meshes and lights would have to be written back
+// as the [[gltf]] tables they came from, which the writer does not do yet (docs/gltf.md).
 std::string scene_to_toml(const Scene& scene, const std::string& header = "", const std::string& written_as = "");
 
 // Writes scene_to_toml() to `path` atomically; throws Error(OutputError) naming the path.
