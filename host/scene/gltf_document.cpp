@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -377,7 +378,10 @@ GltfDocument parse_gltf_document(std::string_view bytes, const std::string& path
     gltf_fail("glTF", "the file is " + std::to_string(bytes.size()) + " bytes, over the limit of " + std::to_string(kMaxBufferBytes));
   GltfDocument document;
   document.hash = hex64(fnv1a64(bytes));
-  const bool glb = has_glb_magic(bytes);
+  // A .glb file is a GLB container whatever its first bytes say (a wrong magic is its first error).
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  const bool glb = has_glb_magic(bytes) || extension == ".glb";
   GlbChunks chunks;
   if (glb) {
     chunks = split_glb(bytes);
