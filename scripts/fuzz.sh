@@ -5,7 +5,9 @@
 # resolve), tests/fuzz/fuzz_mesh_file (seeds: tests/scenes/meshes/, tests/scenes/bad/meshes/ and
 # assimp-testmodels' small OBJ, PLY and STL files, each behind its file-type byte),
 # tests/fuzz/fuzz_assimp_mesh (clpt's handling of synthetic aiScenes; no seeds, no dictionary:
-# its input is binary) and tests/fuzz/fuzz_options (seeds: a few command lines) on working corpora kept in build-fuzz, so
+# its input is binary), tests/fuzz/fuzz_gltf (glTF files: seeds written by tests/gltf_corpus.py,
+# good and bad, and assimp-testmodels' small glTF 2.0 files, each behind its name byte) and
+# tests/fuzz/fuzz_options (seeds: a few command lines) on working corpora kept in build-fuzz, so
 # nothing is written into the source tree.
 #   scripts/fuzz.sh [SECONDS]     fuzz each harness for SECONDS (default 60)
 #   scripts/fuzz.sh --runs N      fuzz N inputs each
@@ -30,7 +32,7 @@ clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
 # The harness needs neither OpenImageIO nor the test suite; only the fuzz target is built.
 cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCLPT_FUZZ=ON -DCLPT_BUILD_TESTS=OFF -DCLPT_WITH_OIIO=OFF >/dev/null
-cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_mesh_file fuzz_assimp_mesh fuzz_options
+cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_mesh_file fuzz_assimp_mesh fuzz_gltf fuzz_options
 
 # Leaks inside assimp are the library's (tests/fuzz/lsan.supp); clpt's own stay findings.
 export LSAN_OPTIONS="suppressions=$CLPT_ROOT/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
@@ -66,7 +68,7 @@ fuzz_target() {
   clpt_log "fuzzing $name (${limit[*]}); log: $log"
   # -timeout: an input taking over 10 s is a finding (parsing takes milliseconds).
   (cd "$CLPT_ROOT/tests/scenes/bad" &&
-   "$build/tests/fuzz/$name" "${limit[@]}" "${dict_option[@]}" -max_len=8192 -timeout=10 \
+   "$build/tests/fuzz/$name" "${limit[@]}" "${dict_option[@]}" -max_len="${max_len:-8192}" -timeout=10 \
       -print_final_stats=1 -artifact_prefix="$findings/$name-" "${extra[@]}" "$corpus") >"$log" 2>&1 || status=$?
   local runs secs new=()
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s += $2} END {print s + 0}' || true)
@@ -119,5 +121,19 @@ fuzz_target fuzz_scene_loader "$CLPT_ROOT/tests/fuzz/scene.dict" \
     "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml
 fuzz_target fuzz_mesh_file "$CLPT_ROOT/tests/fuzz/mesh.dict" "$mesh_seeds"/*
 fuzz_target fuzz_assimp_mesh -
+# glTF seeds: the first byte names the file (0: fuzz.glb, 1: fuzz.gltf; fuzz_gltf.cpp). glTF
+# files are larger than the other formats' seeds: inputs up to 64 kB.
+gltf_seeds=$work/gltf-seeds
+mkdir -p "$gltf_seeds/written"
+python3 "$CLPT_ROOT/tests/gltf_corpus.py" good "$gltf_seeds/written"
+python3 "$CLPT_ROOT/tests/gltf_corpus.py" bad "$gltf_seeds/written"
+for f in "$gltf_seeds"/written/*.gl* /usr/share/assimp/models/glTF2/*/*.gl* \
+         /usr/share/assimp/models/glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode/*.gltf; do
+  [[ -f "$f" && $(stat -c %s "$f") -le 65536 ]] || continue
+  seed=$gltf_seeds/$(basename "$(dirname "$f")")-$(basename "$f")
+  case "${f,,}" in *.glb) byte='\000' ;; *) byte='\001' ;; esac
+  [[ -e "$seed" ]] || { printf "$byte"; cat "$f"; } >"$seed"
+done
+max_len=65536 fuzz_target fuzz_gltf "$CLPT_ROOT/tests/fuzz/gltf.dict" "$gltf_seeds"/*.gl*
 fuzz_target fuzz_options "$CLPT_ROOT/tests/fuzz/options.dict" "$option_seeds"/*
 exit $failed

@@ -3,17 +3,23 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "scene/gltf_error.h"
-#include "scene/scene_validate.h"
 
 namespace clpt {
 namespace {
 
+// Six significant digits, as a message shows a value ("1.5", "inf").
+std::string shown(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 void require_in(double value, double min, double max, const std::string& element) {
   if (!std::isfinite(value) || value < min || value > max)
-    gltf_fail(element, "must be in [" + scene_detail::format_number(min) + ", " + scene_detail::format_number(max) +
-                           "] (got " + scene_detail::format_number(value) + ")");
+    gltf_fail(element, "must be in [" + shown(min) + ", " + shown(max) + "] (got " + shown(value) + ")");
 }
 
 Vec3 colour(const std::vector<double>& values, size_t length, const std::string& element) {
