@@ -491,6 +491,12 @@ TEST(GltfBadInput, EachNamesTheElement) {
       {[](GltfBuilder& b) { b.bin.replace(0, 4, std::string("\0\0\xc0\x7f", 4)); },
        "mem.glb: accessors[0]: element 0 is not finite"},
       {[](GltfBuilder& b) { b.doc["scene"] = 3; }, "mem.glb: scene: 3 is out of range"},
+      {[](GltfBuilder& b) { b.doc["accessors"][0]["byteOffset"] = -4; },
+       "mem.glb: accessors[0].byteOffset: must be a non-negative integer (got -4)"},
+      {[](GltfBuilder& b) { b.doc["nodes"][0]["mesh"] = 4294967296; },
+       "mem.glb: nodes[0].mesh: must be an integer in [0, 2^31 - 1] (got 4294967296)"},
+      {[](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = "0"; },
+       "mem.glb: meshes[0].primitives[0].attributes.POSITION: must be an integer"},
       {[](GltfBuilder& b) { b.doc["meshes"][0]["primitives"][0]["mode"] = 9; },
        "mem.glb: meshes[0].primitives[0].mode: 9 is not a glTF primitive mode"},
   };

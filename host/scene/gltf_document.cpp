@@ -310,6 +310,61 @@ void check_images(const json& root) {
   }
 }
 
+// The index and offset properties tinygltf reads with defaults: where one has the wrong type or
+// a negative value tinygltf keeps its default (-1 or 0) silently, and it narrows indices to int,
+// so each present index must be an integer in [0, 2^31 - 1] and each offset a non-negative
+// integer. (array, property; "[]": each element)
+void check_indices(const json& root) {
+  static const std::vector<std::pair<const char*, std::vector<const char*>>> kRules = {
+      {"accessors", {"bufferView", "byteOffset"}},
+      {"nodes", {"mesh", "camera", "skin", "children[]"}},
+      {"scenes", {"nodes[]"}},
+      {"textures", {"source", "sampler"}},
+  };
+  const auto check = [](const json& value, const std::string& element) {
+    const bool offset = element.size() >= 10 && element.compare(element.size() - 10, 10, "byteOffset") == 0;
+    const uint64_t max = offset ? UINT64_MAX : 0x7FFFFFFF;
+    if (!value.is_number_unsigned() || value.get<uint64_t>() > max)
+      gltf_fail(element, std::string("must be ") + (offset ? "a non-negative integer" : "an integer in [0, 2^31 - 1]") +
+                             " (got " + value.dump().substr(0, 40) + ")");
+  };
+  if (root.contains("scene")) check(root["scene"], "scene");
+  for (const auto& [array, properties] : kRules) {
+    const json* items = array_member(root, array);
+    for (size_t i = 0; items && i < items->size(); ++i) {
+      const std::string element = indexed(array, i);
+      const json& item = object_at(*items, i, element);
+      for (const std::string property : properties) {
+        const bool list = property.size() > 2 && property.compare(property.size() - 2, 2, "[]") == 0;
+        const std::string key = list ? property.substr(0, property.size() - 2) : property;
+        const auto it = item.find(key);
+        if (it == item.end()) continue;
+        if (!list) {
+          check(*it, element + "." + key);
+          continue;
+        }
+        if (!it->is_array()) gltf_fail(element + "." + key, "must be an array");
+        for (size_t k = 0; k < it->size(); ++k) check((*it)[k], element + "." + key + "[" + std::to_string(k) + "]");
+      }
+    }
+  }
+  const json* meshes = array_member(root, "meshes");
+  for (size_t m = 0; meshes && m < meshes->size(); ++m) {
+    const json& mesh = object_at(*meshes, m, indexed("meshes", m));
+    const auto primitives = mesh.find("primitives");
+    if (primitives == mesh.end() || !primitives->is_array()) continue;  // tinygltf refuses it
+    for (size_t p = 0; p < primitives->size(); ++p) {
+      const std::string element = indexed("meshes", m) + indexed(".primitives", p);
+      const json& primitive = object_at(*primitives, p, element);
+      for (const char* key : {"indices", "material", "mode"})
+        if (primitive.contains(key)) check(primitive[key], element + "." + key);
+      const auto attributes = primitive.find("attributes");
+      if (attributes != primitive.end() && attributes->is_object())
+        for (const auto& [name, value] : attributes->items()) check(value, element + ".attributes." + name);
+    }
+  }
+}
+
 // tinygltf's file-system callbacks: the external buffers check_buffers read, and nothing else.
 bool serve_exists(const std::string& path, void* buffers) {
   const auto& external = static_cast<Buffers*>(buffers)->external;
@@ -394,6 +449,7 @@ GltfDocument parse_gltf_document(std::string_view bytes, const std::string& path
   Buffers buffers = check_buffers(root, glb, chunks.bin, path, document);
   check_buffer_views(root, buffers);
   check_images(root);
+  check_indices(root);
   document.model = run_tinygltf(bytes, glb, chunks, buffers);
   return document;
 }
