@@ -68,7 +68,7 @@ std::function<int()> add_bench_command(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand(
       "bench", "Benchmark scene x form (x megakernel loop) x kernel x precision x estimator x device x work-group size");
-  cmd->add_option("--scenes", o->scenes, "Scene files (default: scenes/diffuse.toml)")->delimiter(',');
+  cmd->add_option("--scenes", o->scenes, "Scene files, TOML or glTF (default: scenes/diffuse.toml)")->delimiter(',');
   cmd->add_option("--forms", o->forms, "megakernel,wavefront")
       ->delimiter(',')->check(CLI::IsMember({"megakernel", "wavefront"}));
   cmd->add_option("--megakernel-loops", o->loops, "auto,path,lockstep (default: auto: lockstep on CPUs, else path)")

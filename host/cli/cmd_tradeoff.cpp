@@ -369,7 +369,7 @@ std::function<int()> add_tradeoff_command(CLI::App& app) {
       "tradeoff",
       "Speed against accuracy: RMSE against a reference, split into noise and bias, versus render time, "
       "for each combination of precision x estimator x form x sampler x adaptive x device");
-  cmd->add_option("scene", o->scene_path, "Scene file (TOML)")->required();
+  cmd->add_option("scene", o->scene_path, "Scene file: TOML or glTF 2.0 (.gltf, .glb)")->required();
   cmd->add_option("--reference", o->reference_path,
                   "Converged EXR with variance channels, e.g. from `clpt render --precision double --spp 4096`; "
                   "the same size as the renders")
