@@ -195,6 +195,16 @@ TEST(GltfLoader, AMeshPlacedByTwoNodesIsTwoInstances) {
   EXPECT_EQ(scene.meshes[1].gltf_element, "nodes[1] meshes[0].primitives[0]");
 }
 
+TEST(GltfLoader, DegenerateTrianglesAreDroppedAndCounted) {
+  GltfBuilder b;
+  // The second triangle repeats a vertex: zero area.
+  b.node({{"mesh", b.triangle_mesh({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0})}});
+  const Scene scene = load(b);
+  EXPECT_EQ(scene.meshes[0].triangles.size(), 1u);
+  EXPECT_TRUE(has_warning(scene, "mem.glb: nodes[0] meshes[0].primitives[0]: mesh 'meshes[0]/primitive 0': 1 of 2 "
+                                 "triangles have zero area and were dropped"));
+}
+
 TEST(GltfLoader, StripsAndFansMakeTheSpecificationsTriangles) {
   // Five vertices zig-zagging along x in the z = 0 plane.
   const std::vector<float> zigzag = {0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0, 2, 0, 0};

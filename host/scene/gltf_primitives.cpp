@@ -108,6 +108,9 @@ LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, con
     for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], values[i + 1]});
   }
   local.triangles = assemble(vertex_sequence(c, p, vertices, element), mode, element);
+  c.triangles += local.triangles.size();
+  if (c.triangles > kMaxGltfTriangles)
+    gltf_fail(element, "the scene's placements add up to more than 2^27 triangles, the most clpt renders");
   if (determinant(world.linear) < 0)
     for (auto& t : local.triangles) std::swap(t[1], t[2]);
   return local;

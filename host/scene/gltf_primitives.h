@@ -24,7 +24,13 @@ struct PrimitiveContext {
   uint64_t total_bytes;                    // GltfDocument::total_bytes
   std::set<std::string> skipped_modes;     // POINTS, LINES ... met so far (one warning names them)
   std::vector<std::string> warnings;       // "ELEMENT: MESSAGE"
+  uint64_t triangles = 0;                  // placed so far, against kMaxGltfTriangles
 };
+
+// Instancing multiplies a file's triangles by its placements, so a small file could ask for any
+// number: the placed triangles may not exceed this (render/limits.h kMaxTriangles, the most a
+// render takes; the scene layer cannot include the render layer's header).
+constexpr uint64_t kMaxGltfTriangles = uint64_t(1) << 27;
 
 // The TriangleMeshes of the mesh that `instance`'s node places (none if it places none), appended
 // to `out`. Each is named "MESH/primitive P" (MESH: the mesh's name, else "meshes[M]"), with
