@@ -1,4 +1,4 @@
-// The view of a glTF scene (docs/gltf.md "Camera"): the first camera met in node order, or the
+// The view of a glTF scene (docs/gltf.md "The camera and the image size"): the first camera met in node order, or the
 // one --camera names; the image size from --width/--height and the camera's aspect ratio; a view
 // framing the scene's bounds when the file has no camera.
 #pragma once

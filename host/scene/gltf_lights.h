@@ -1,4 +1,4 @@
-// KHR_lights_punctual (docs/gltf.md "Lights"): point, spot and directional lights placed by their
+// KHR_lights_punctual (docs/gltf.md "What is read", lights): point, spot and directional lights placed by their
 // nodes, in the physical units of scene.h PunctualLight (candela / 683 -> W/sr, lux / 683 -> W/m^2).
 #pragma once
 
