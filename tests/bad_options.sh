@@ -43,7 +43,7 @@ expect 2 "--time" -- render "$scene" --time -1 -o out.exr
 expect 2 "--spp 10: the grid sampler needs a multiple of 16" -- render "$scene" --sampler grid --spp 10 -o out.exr
 expect 2 "--device 'nosuchdevice': no such device" -- render "$scene" --device nosuchdevice --sampler jitter --spp 1 -o out.exr
 expect 2 "-o out.jpg: the output must be an .exr" -- render "$scene" -o out.jpg
-expect 2 "does not exist" -- render "$scene" -o no/such/dir/out.exr
+expect 5 "-o no/such/dir/out.exr: directory 'no/such/dir' does not exist" -- render "$scene" -o no/such/dir/out.exr
 expect 3 "missing.toml: cannot open scene file" -- render missing.toml -o out.exr
 expect 2 "subcommand" -- frobnicate
 expect 2 "--precision" -- render "$scene" --precision quad -o out.exr

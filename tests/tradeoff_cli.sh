@@ -3,9 +3,9 @@
 # (megakernel, wavefront) at two tiny budgets plus a --target-from render write a well-formed CSV
 # (the exact header, one row per run, numeric fields that parse) and a PNG plot (PNG magic, the
 # expected size); -o .json writes valid JSON. Bad input (missing reference, size mismatch, a
-# reference without variance channels, bad --precision, unwritable or wrong-type -o, a bad
-# --target-from, the reference's seed, no gnuplot on PATH) exits 2 naming the option, before
-# rendering, writing nothing.
+# reference without variance channels, bad --precision, wrong-type -o, a bad --target-from, the
+# reference's seed, no gnuplot on PATH) exits 2 naming the option, and an -o in a directory that
+# does not exist exits 5 (the output error), before rendering, writing nothing.
 #   tradeoff_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
 clpt=$1 src=$2 work=$3
@@ -112,7 +112,7 @@ expect 2 "--reference inputs/ref.exr is 32x24 but the renders are 16x24" \
   "$scene" --reference inputs/ref.exr --width 16 --height 24 --budgets 0.05 -o out2/runs.csv
 expect 2 "no channel 'variance.R'" "$scene" --reference inputs/rgb.exr "${ok_args[@]}"
 expect 2 "--precision" "$scene" --reference inputs/ref.exr "${ok_args[@]}" --precision robust,quad
-expect 2 "-o out2/no/such/dir/runs.csv: directory" \
+expect 5 "-o out2/no/such/dir/runs.csv: directory 'out2/no/such/dir' does not exist" \
   "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.05 -o out2/no/such/dir/runs.csv
 expect 2 "-o out2/runs.txt: the output must be a .csv or a .json" \
   "$scene" --reference inputs/ref.exr "${size[@]}" --budgets 0.05 -o out2/runs.txt

@@ -114,7 +114,6 @@ expect_usage "--reference: remote not in {auto,device,builtin,films}" --referenc
 expect_usage "reference $work/nowhere/gemspt_glass_160x120.exr: no such file" --reference builtin \
   --reference-dir "$work/nowhere" --scenes glass
 expect_usage "--width/--height 64x120: the builtin references are 160x120" --reference builtin --width 64
-expect_usage "--json $work/nowhere/v.json: directory '$work/nowhere' does not exist" --json "$work/nowhere/v.json"
 # Films mode (its end-to-end run is tests/gpu_report_cli.sh): what it needs and what may not clash.
 expect_usage "--reference films: --reference-dir names the films' directory" --reference films
 expect_usage "--reference films: $work/nowhere/films.json: no such file" --reference films --reference-dir "$work/nowhere"
@@ -131,6 +130,13 @@ status=$?
   { fail "films mode with a subset of the matrix: exit $status"; show films2.out; }
 CLPT_INJECT_FAULT=perturb:0:X:1.02 expect_usage "CLPT_INJECT_FAULT='perturb:0:X:1.02': entry 'perturb:0:X:1.02'" \
   --scenes diffuse
+# An --json in a directory that does not exist: the output error (5), before any rendering.
+"$clpt" verify --json "$work/nowhere/v.json" >bad.out 2>bad.err
+status=$?
+[[ $status -eq 5 ]] || fail "verify --json in a missing directory exited $status, expected 5"
+grep -qF -- "--json $work/nowhere/v.json: directory '$work/nowhere' does not exist" bad.err ||
+  { fail "verify --json in a missing directory: wrong message"; show bad.err; }
+grep -q "PASS\|FAIL" bad.out && fail "verify --json in a missing directory: rendered rows"
 
 if [[ $failures -gt 0 ]]; then echo "$failures failure(s)"; exit 1; fi
 echo "all verify CLI checks passed"

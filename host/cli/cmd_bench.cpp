@@ -49,6 +49,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   if (ranks.size() > 1 && (config.bvh_builders.size() > 1 || config.bvh_builders.front() != BvhBuilder::Clpt))
     throw Error(ExitCode::Usage, "--bvh-builders: only clpt in an MPI job (its scaling renders as clpt render does)");
   if (config.devices.empty()) config.devices = {"best"};
+  if (!o.json.empty() && ranks.coordinator()) check_output_file("--json", o.json);
   config.measure_vector_width = !o.no_vector_width;
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares

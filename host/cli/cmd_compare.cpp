@@ -36,9 +36,7 @@ void check_output_path(const std::string& option, const std::string& path, const
   if (path.empty()) return;
   if (std::filesystem::path(path).extension() != extension)
     throw Error(ExitCode::Usage, option + " " + path + ": the file must end in " + extension);
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, option + " " + path + ": directory '" + dir.string() + "' does not exist");
+  check_output_file(option, path);
 }
 
 int run(const CompareCommandOptions& o) {

@@ -36,8 +36,7 @@ int list_variants() {
 }
 
 int emit_variants(const KernelsOptions& o) {
-  if (!std::filesystem::is_directory(o.directory))
-    throw Error(ExitCode::Usage, "kernels emit: directory '" + o.directory + "' does not exist");
+  check_output_file("kernels emit", (std::filesystem::path(o.directory) / "variants.txt").string());
   const Scene diffuse = load_scene_file(o.scene);
   std::string names;
   for (const KernelVariant& v : covering_kernel_variants()) {

@@ -17,6 +17,7 @@
 #include "scene/precision_range.h"
 #include "scene/scene_loader.h"
 #include "tools/vector_width.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #ifdef CLPT_WITH_OIIO
@@ -76,9 +77,7 @@ std::string output_path(const RenderOptions& o) {
     throw Error(ExitCode::Usage, "-o " + path + ": this clpt was built without OpenImageIO "
                                  "(CLPT_WITH_OIIO=OFF) and writes only raw .pfm films");
 #endif
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, "-o " + path + ": directory '" + dir.string() + "' does not exist");
+  check_output_file("-o", path);  // the PNG preview goes beside it
   return path;
 }
 
@@ -236,13 +235,6 @@ int finish_outputs(const RenderOptions& o, const std::string& out, const Film& f
   return static_cast<int>(ExitCode::Interrupted);
 }
 
-// --checkpoint FILE: its directory must exist (checked before any work, like -o).
-void check_checkpoint_path(const std::string& path) {
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, "--checkpoint " + path + ": directory '" + dir.string() + "' does not exist");
-}
-
 // A rank other than 0 of an MPI job: renders its parts and writes nothing; its exit code is rank
 // 0's, sent once rank 0 has written the outputs (so that no rank leaves the job before rank 0
 // knows whether the outputs could be written).
@@ -260,7 +252,7 @@ int run(const RenderOptions& o) {
   const bool writes = ranks.coordinator();  // rank 0 alone checks and writes the outputs
   const std::string out = writes ? output_path(o) : "";
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
-  if (writes && !o.checkpoint.empty()) check_checkpoint_path(o.checkpoint);
+  if (writes && !o.checkpoint.empty()) check_output_file("--checkpoint", o.checkpoint);
   Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});

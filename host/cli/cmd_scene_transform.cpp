@@ -13,6 +13,7 @@
 #include "scene/scene_loader.h"
 #include "scene/scene_transform.h"
 #include "scene/scene_writer.h"
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -38,9 +39,7 @@ std::string describe(const TransformOptions& o) {
 }
 
 int run(const TransformOptions& o) {
-  const std::filesystem::path dir = std::filesystem::path(o.output).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, "-o " + o.output + ": directory '" + dir.string() + "' does not exist");
+  check_output_file("-o", o.output);
   for (double t : o.translate)
     if (!std::isfinite(t)) throw Error(ExitCode::Usage, "--translate: every component must be finite");
   Scene scene = load_scene_file(o.input);

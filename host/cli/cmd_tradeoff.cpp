@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <set>
@@ -52,29 +51,18 @@ struct TradeoffOptions {
 
 const std::vector<double> kDefaultBudgets = {0.25, 0.5, 1, 2};
 
-// The output's directory must exist and take a file: checked before any rendering.
-void check_writable(const std::string& option, const std::string& path) {
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, option + " " + path + ": directory '" + dir.string() + "' does not exist");
-  const std::string probe = temporary_path_for(path);
-  if (!std::ofstream(probe, std::ios::binary))
-    throw Error(ExitCode::Usage, option + " " + path + ": cannot create a file in that directory");
-  std::remove(probe.c_str());
-}
-
 // Returns the gnuplot to use for --plot ("" without --plot).
 std::string check_outputs(const TradeoffOptions& o) {
   if (!o.output.empty()) {
     const std::string ext = std::filesystem::path(o.output).extension().string();
     if (ext != ".csv" && ext != ".json")
       throw Error(ExitCode::Usage, "-o " + o.output + ": the output must be a .csv or a .json file");
-    check_writable("-o", o.output);
+    check_output_file("-o", o.output);
   }
   if (o.plot.empty()) return "";
   if (std::filesystem::path(o.plot).extension() != ".png")
     throw Error(ExitCode::Usage, "--plot " + o.plot + ": the plot must be a .png file");
-  check_writable("--plot", o.plot);
+  check_output_file("--plot", o.plot);
   const std::string gnuplot = find_gnuplot();
   if (gnuplot.empty())
     throw Error(ExitCode::Usage, "--plot " + o.plot + ": gnuplot is not on PATH; clpt draws its plots with it "

@@ -24,14 +24,12 @@ struct VerifyCommandOptions {
   bool quiet = false;
 };
 
-// --json FILE: a .json name in an existing directory, checked before any rendering.
+// --json FILE: a .json name where a file can be written, checked before any rendering.
 void check_json_path(const std::string& path) {
   if (path.empty()) return;
   if (std::filesystem::path(path).extension() != ".json")
     throw Error(ExitCode::Usage, "--json " + path + ": the file must end in .json");
-  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(ExitCode::Usage, "--json " + path + ": directory '" + dir.string() + "' does not exist");
+  check_output_file("--json", path);
 }
 
 int run(VerifyCommandOptions& o) {

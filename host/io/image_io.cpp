@@ -162,7 +162,12 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film, 
     std::remove(exr_tmp.c_str());
     throw;
   }
-  commit_temporary(exr_tmp, exr_path);
+  try {
+    commit_temporary(exr_tmp, exr_path);
+  } catch (...) {
+    std::remove(png_tmp.c_str());
+    throw;
+  }
   commit_temporary(png_tmp, png_path);
   return png_path;
 }

@@ -14,7 +14,10 @@
 
 namespace clpt {
 
-void write_pfm_atomic(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+namespace {
+
+// Writes the PFM to the temporary name for `path` (util/atomic_file.h) and returns that name.
+std::string write_pfm_temporary(const std::string& path, int width, int height, const std::vector<float>& rgb) {
   const std::string tmp = temporary_path_for(path);
   {
     std::ofstream out(tmp, std::ios::binary);
@@ -29,7 +32,13 @@ void write_pfm_atomic(const std::string& path, int width, int height, const std:
       throw Error(ExitCode::OutputError, path + ": cannot write output: write failed");
     }
   }
-  commit_temporary(tmp, path);
+  return tmp;
+}
+
+}  // namespace
+
+void write_pfm_atomic(const std::string& path, int width, int height, const std::vector<float>& rgb) {
+  commit_temporary(write_pfm_temporary(path, width, height, rgb), path);
 }
 
 std::string variance_pfm_path(const std::string& path) {
@@ -40,9 +49,23 @@ std::string variance_pfm_path(const std::string& path) {
 
 void write_film_pfm(const std::string& path, const Film& film) { write_film_pfm(path, film.mean_variance()); }
 
+// Both files are complete before either gets its name, and neither keeps it alone: a mean whose
+// variance could not be named is removed again.
 void write_film_pfm(const std::string& path, const MeanVarianceImage& image) {
-  write_pfm_atomic(variance_pfm_path(path), image.width, image.height, image.variance);
-  write_pfm_atomic(path, image.width, image.height, image.mean);
+  const std::string variance_path = variance_pfm_path(path);
+  const std::string variance_tmp = write_pfm_temporary(variance_path, image.width, image.height, image.variance);
+  try {
+    commit_temporary(write_pfm_temporary(path, image.width, image.height, image.mean), path);
+  } catch (...) {
+    std::remove(variance_tmp.c_str());
+    throw;
+  }
+  try {
+    commit_temporary(variance_tmp, variance_path);
+  } catch (...) {
+    std::remove(path.c_str());
+    throw;
+  }
 }
 
 namespace {

@@ -16,7 +16,8 @@ void write_pfm_atomic(const std::string& path, int width, int height, const std:
 // PATH with ".pfm" replaced by ".var.pfm" (or ".var.pfm" appended): where a film's variance goes.
 std::string variance_pfm_path(const std::string& path);
 
-// Writes PATH (mean) and variance_pfm_path(PATH) (variance of the mean).
+// Writes PATH (mean) and variance_pfm_path(PATH) (variance of the mean): both, or (throwing
+// Error(OutputError)) neither.
 void write_film_pfm(const std::string& path, const Film& film);
 void write_film_pfm(const std::string& path, const MeanVarianceImage& image);
 

@@ -65,7 +65,7 @@ std::string mesh_file_for(const std::string& scene_file, const TriangleMesh& m, 
   namespace fs = std::filesystem;
   const fs::path target = fs::absolute(resolve_mesh_path(scene_file, m.file));
   std::error_code ec;
-  const fs::path relative = fs::relative(target, fs::absolute(fs::path(written_as).parent_path()), ec);
+  const fs::path relative = fs::relative(target, fs::absolute(directory_of(written_as)), ec);
   return ec || relative.empty() ? target.string() : relative.generic_string();
 }
 

@@ -11,6 +11,30 @@
 
 namespace clpt {
 
+std::filesystem::path directory_of(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  return parent.empty() ? std::filesystem::path(".") : parent;
+}
+
+void check_output_file(const std::string& option, const std::string& path) {
+  const std::filesystem::path dir = directory_of(path);
+  const std::string what = option + " " + path + ": ";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(ExitCode::OutputError, what + "a directory of that name exists");
+  const std::filesystem::file_status status = std::filesystem::status(dir, ec);
+  if (!std::filesystem::exists(status))
+    throw Error(ExitCode::OutputError, what + "directory '" + dir.string() + "' does not exist");
+  if (!std::filesystem::is_directory(status))
+    throw Error(ExitCode::OutputError, what + "'" + dir.string() + "' is not a directory");
+  const std::string probe = temporary_path_for(path);
+  std::FILE* f = std::fopen(probe.c_str(), "wb");
+  if (!f)
+    throw Error(ExitCode::OutputError,
+                what + "cannot create a file in directory '" + dir.string() + "': " + std::strerror(errno));
+  std::fclose(f);
+  std::remove(probe.c_str());
+}
+
 std::string temporary_path_for(const std::string& path) {
   const std::filesystem::path p(path);
   const std::filesystem::path tmp = p.parent_path() / ("." + p.stem().string() + ".clpt-tmp-" +

@@ -3,9 +3,20 @@
 // interrupted or concurrent run never leaves a half-written file under the requested name.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 namespace clpt {
+
+// The directory a file named `path` goes in: its parent, or "." for a bare name such as
+// "out.exr" (whose parent_path() is empty, which std::filesystem::absolute and relative reject).
+std::filesystem::path directory_of(const std::string& path);
+
+// Checks, before any work, that an output file can be written at `path` (given with `option`,
+// e.g. "-o"): its directory exists, is a directory and takes a new file (a temporary file is made
+// there and removed), and `path` is not a directory. Throws Error(OutputError) naming the option,
+// the path and why not.
+void check_output_file(const std::string& option, const std::string& path);
 
 // ".STEM.clpt-tmp-PID.EXT" beside `path`: same directory (rename stays on one file system) and
 // same extension (image writers pick the format from it).
