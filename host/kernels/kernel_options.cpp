@@ -9,21 +9,6 @@
 
 namespace clpt {
 
-const char* precision_name(Precision precision) {
-  switch (precision) {
-    case Precision::Fast: return "fast";
-    case Precision::Double: return "double";
-    default: return "robust";
-  }
-}
-
-std::optional<Precision> parse_precision(const std::string& name) {
-  if (name == "fast") return Precision::Fast;
-  if (name == "robust") return Precision::Robust;
-  if (name == "double") return Precision::Double;
-  return std::nullopt;
-}
-
 const char* intersection_name(Intersection intersection) {
   switch (intersection) {
     case Intersection::Centre: return "centre";
@@ -189,26 +174,6 @@ std::optional<SceneLoops> parse_scene_loops(const std::string& name) {
 bool scene_loops_unrolled_for(SceneLoops loops, const DeviceInfo& device) {
   if (loops == SceneLoops::Auto) return device.is_cpu;
   return loops == SceneLoops::Unrolled;
-}
-
-bool spheres_in_hierarchy(const Scene& scene) {
-  return static_cast<int>(scene.spheres.size()) > kMaxLoopSpheres;
-}
-
-std::vector<bool> loop_spheres(const Scene& scene) {
-  const size_t n = scene.spheres.size();
-  if (!spheres_in_hierarchy(scene)) return std::vector<bool>(n, true);
-  std::vector<double> radii;
-  for (const Sphere& s : scene.spheres) radii.push_back(s.radius);
-  std::nth_element(radii.begin(), radii.begin() + long(n / 2), radii.end());
-  const double large = 10 * radii[n / 2];
-  std::vector<size_t> order(n);
-  for (size_t i = 0; i < n; ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return scene.spheres[a].radius > scene.spheres[b].radius; });
-  std::vector<bool> in_loop(n, false);
-  for (size_t k = 0; k < std::min<size_t>(n, 8) && scene.spheres[order[k]].radius >= large; ++k) in_loop[order[k]] = true;
-  return in_loop;
 }
 
 KernelFeatures features_for_scene(const Scene& scene, Precision precision) {

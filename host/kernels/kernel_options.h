@@ -7,18 +7,11 @@
 #include <string>
 
 #include "cl/cl_device.h"
+#include "scene/loop_spheres.h"
+#include "scene/precision_preset.h"
 #include "scene/scene.h"
 
 namespace clpt {
-
-// Arithmetic of the kernels (`--precision`); README "Precision presets".
-//   fast:   float, -cl-unsafe-math-optimizations, native maths, the centre-based intersection
-//   robust: float, IEEE maths, the accurate intersection of intersect.cl (default)
-//   double: fp64 arithmetic throughout the path (needs cl_khr_fp64)
-enum class Precision { Fast, Robust, Double };
-const char* precision_name(Precision precision);
-// "fast" | "robust" | "double"; nullopt otherwise.
-std::optional<Precision> parse_precision(const std::string& name);
 
 // Ray/sphere formula (kernels/intersect.cl; `--intersection` overrides the preset's choice).
 //   centre:  textbook, from the sphere's centre: cheapest, and 11% too dark on the book's scene
@@ -112,18 +105,6 @@ const char* sphere_reads_name(SphereReads reads);
 std::optional<SphereReads> parse_sphere_reads(const std::string& name);
 // Whether a kernel for this device reads the hit sphere by selects.
 bool sphere_reads_by_select_for(SphereReads reads, const DeviceInfo& device, Precision precision);
-
-// Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
-// of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
-// The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
-constexpr int kMaxLoopSpheres = 16;
-// Whether the scene's spheres are hierarchy primitives (more than kMaxLoopSpheres of them).
-bool spheres_in_hierarchy(const Scene& scene);
-// Which spheres the kernels' loop tests (the others are hierarchy primitives): all of them when
-// there are at most kMaxLoopSpheres; else those of radius at least 10x the median, at most 8 of
-// them (the book's walls, light and balls among pebbles): a wall's box would cover every other
-// box, so each ray would visit the wall's leaf on any path through the tree.
-std::vector<bool> loop_spheres(const Scene& scene);
 
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)

@@ -5,15 +5,16 @@
 #include <vector>
 
 #include "kernels/types.h"
-#include "kernels/kernel_options.h"
 #include "scene/bvh_build.h"
 #include "scene/bvh_builders.h"
+#include "scene/loop_spheres.h"
+#include "scene/precision_preset.h"
 #include "scene/scene.h"
 
 namespace clpt {
 
 struct DeviceScene {
-  // Every sphere: first the loop's (kernel_options.h, loop_spheres) in the scene's order, then
+  // Every sphere: first the loop's (loop_spheres.h) in the scene's order, then
   // the hierarchy's primitives in its leaf order.
   std::vector<GpuSphere> spheres;
   uint32_t loop_spheres = 0;  // spheres the kernels test in their loop (the first ones)

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/kernel_options.h"
+#include "scene/precision_preset.h"
 #include "scene/scene.h"
 
 namespace clpt {

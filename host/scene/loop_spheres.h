@@ -1,0 +1,25 @@
+// Which spheres the kernels test in their sphere loop and which are primitives of the bounding
+// volume hierarchy: decided once, from the scene alone. The scene's conversion for the kernels
+// (device_scene.h) puts the loop's spheres first and builds the hierarchy over the others; the
+// kernels' specialisation (kernels/kernel_options.h) fixes the loop's count from the same answer.
+#pragma once
+
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace clpt {
+
+// Spheres are tested in an unrolled loop up to this many; a scene with more makes them primitives
+// of the bounding volume hierarchy (kernels/bvh.cl), all but its few large ones (loop_spheres).
+// The crossover is measured with `clpt bench` (docs/performance.md, "Traversal").
+constexpr int kMaxLoopSpheres = 16;
+// Whether the scene's spheres are hierarchy primitives (more than kMaxLoopSpheres of them).
+bool spheres_in_hierarchy(const Scene& scene);
+// Which spheres the kernels' loop tests (the others are hierarchy primitives): all of them when
+// there are at most kMaxLoopSpheres; else those of radius at least 10x the median, at most 8 of
+// them (the book's walls, light and balls among pebbles): a wall's box would cover every other
+// box, so each ray would visit the wall's leaf on any path through the tree.
+std::vector<bool> loop_spheres(const Scene& scene);
+
+}  // namespace clpt
