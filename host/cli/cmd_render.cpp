@@ -6,8 +6,8 @@
 #include <memory>
 #include <optional>
 
-#include "cl/kernel_cache.h"
 #include "cli/commands.h"
+#include "cli/render_summary.h"
 #include "kernels/kernel_options.h"
 #include "render/checkpoint.h"
 #include "render/film_raw.h"
@@ -97,9 +97,32 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
                                      "(--sampler jitter takes any count)");
 }
 
-// scene and report feed the EXR metadata only (unused in the OIIO-free build).
+#ifdef CLPT_WITH_OIIO
+// The EXR's record of where the time went: the summary's figures as they stand now, before the
+// EXR itself is written (io/render_file.h, clpt:elapsed_s).
+void add_times(RenderFileInfo& info, const RenderReport& report, const RenderCommandTimes& times) {
+  const RenderTimeSplit s = render_time_split(report, times);
+  info.paths = report.paths;
+  info.segments = report.segments;
+  info.passes_s = s.passes;
+  info.paths_per_s = double(report.paths) / std::max(1e-9, s.passes);
+  info.segments_per_s = double(report.segments) / std::max(1e-9, s.passes);
+  info.scene_load_s = s.scene_load;
+  if (s.resume_load > 0) info.resume_load_s = s.resume_load;
+  info.discovery_s = s.discovery;
+  info.convert_s = s.convert;
+  info.kernel_build_s = s.kernel_build;
+  info.kernel_build = kernel_build_source(report);
+  info.first_launch_s = s.first_launch;
+  info.output_s = s.output;
+  info.elapsed_s = s.wall;
+}
+#endif
+
+// scene, report and times feed the EXR metadata only (unused in the OIIO-free build).
 void write_outputs(const RenderOptions& o, const std::string& path, const Film& film,
-                   [[maybe_unused]] const Scene& scene, [[maybe_unused]] const RenderReport& report) {
+                   [[maybe_unused]] const Scene& scene, [[maybe_unused]] const RenderReport& report,
+                   [[maybe_unused]] const RenderCommandTimes& times) {
   const bool quiet = o.quiet;
   const std::string ext = std::filesystem::path(path).extension().string();
   std::string written = path;
@@ -126,81 +149,22 @@ void write_outputs(const RenderOptions& o, const std::string& path, const Film& 
     if (report.estimate.valid) info.error_estimate = report.estimate.relative_rmse_upper;
     info.target_error = o.target_error;
     if (report.stop != StopReason::None) info.stop = stop_reason_name(report.stop);
+    add_times(info, report, times);
     written += " and " + write_render_file(path, film, info, o.exr_compression);
 #endif
   }
   if (!quiet) std::printf("wrote %s\n", written.c_str());
 }
 
-// Several devices: each one's share of the samples, its own paths/s over the time it was busy,
-// and the combined rate over the wall time of the passes.
-void print_device_shares(const RenderReport& r) {
-  const double total = std::max<double>(1, double(r.paths));
-  const double wall = std::max(1e-9, r.render_seconds);
-  for (size_t i = 0; i < r.devices.size(); ++i) {
-    const DeviceShare& d = r.devices[i];
-    std::printf("  device %zu %s, %s: %5.1f%% of the samples, %.2f M paths/s, busy %.2f s (%.0f%%), %llu launches%s\n",
-                i, d.device.c_str(), execution_form_name(d.form), 100.0 * double(d.paths) / total,
-                double(d.paths) / std::max(1e-9, d.busy_seconds) * 1e-6, d.busy_seconds,
-                100.0 * d.busy_seconds / wall, (unsigned long long)d.launches,
-                d.failure.empty() ? "" : " (failed; its work went to the others)");
-  }
-  std::printf("  combined: %.2f M paths/s on %zu devices\n", double(r.paths) / wall * 1e-6, r.devices.size());
-}
-
-// An MPI job: each rank's host, devices, share of the samples, its own paths/s over the time it
-// was busy, and the job's combined rate over the wall time of the passes.
-void print_rank_shares(const RenderReport& r) {
-  const double total = std::max<double>(1, double(r.paths));
-  const double wall = std::max(1e-9, r.render_seconds);
-  for (const RankShare& s : r.ranks)
-    std::printf("  rank %d on %s, %s: %5.1f%% of the samples, %.2f M paths/s, busy %.2f s (%.0f%%)%s\n", s.rank,
-                s.host.c_str(), s.devices.empty() ? "no device" : s.devices.c_str(), 100.0 * double(s.paths) / total,
-                double(s.paths) / std::max(1e-9, s.busy_seconds) * 1e-6, s.busy_seconds,
-                100.0 * s.busy_seconds / wall, s.failure.empty() ? "" : " (failed; its work went to the others)");
-  std::printf("  combined: %.2f M paths/s on %zu ranks\n", double(r.paths) / wall * 1e-6, r.ranks.size());
-}
-
-void print_summary(const Scene& scene, const RenderReport& r) {
-  const double seconds = std::max(1e-9, r.render_seconds);
-  // Megakernel passes are split into watchdog-sized launches (--launch-ms): show how many (this
-  // process's only, so not for an MPI job).
-  const std::string launches = r.form == ExecutionForm::Megakernel && r.ranks.size() <= 1
-                                   ? " in " + std::to_string(r.launches) + " launches"
-                                   : "";
-  const std::string where = r.ranks.size() > 1 ? std::to_string(r.ranks.size()) + " MPI ranks" : r.device;
-  std::printf("rendered %s: %dx%d, %llu spp, %d passes%s, %s, %s, estimator %s, on %s\n", scene.file.c_str(),
-              scene.settings.width, scene.settings.height, (unsigned long long)r.spp, r.passes,
-              launches.c_str(), execution_form_name(r.form), precision_name(r.precision),
-              scene.settings.estimator.c_str(), where.c_str());
-  std::printf("  %.3f s: %.2f M paths/s, %.2f M ray segments/s (%.2f segments/path); "
-              "kernel build %.2f s (%s)\n",
-              r.render_seconds, double(r.paths) / seconds * 1e-6, double(r.segments) / seconds * 1e-6,
-              r.paths ? double(r.segments) / double(r.paths) : 0.0, r.build_seconds,
-              r.kernel_cache && r.kernel_cache->hits() > 0 ? "clpt cache hit" : "compiled");
-  if (!r.stage_times.empty()) {
-    std::printf("  device time per stage:");
-    for (const StageTime& t : r.stage_times)
-      std::printf(" %s %.3f s (%llu launches);", t.label.c_str(), t.seconds, (unsigned long long)t.launches);
-    std::printf(" %u paths in flight\n", r.paths_in_flight);
-  }
-  if (r.estimate.valid)
-    std::printf("  estimated relative error %.2f%% (RMSE over the image's mean; upper estimate, %llu+%llu spp "
-                "halves)%s%s\n",
-                100 * r.estimate.relative_rmse_upper, (unsigned long long)r.estimate.half_spp[0],
-                (unsigned long long)r.estimate.half_spp[1], r.stop != StopReason::None ? "; stopped at the " : "",
-                r.stop != StopReason::None ? stop_reason_name(r.stop) : "");
-  if (r.dropped)
-    std::printf("  dropped %llu samples with NaN/Inf radiance\n", (unsigned long long)r.dropped);
-  if (r.devices.size() > 1) print_device_shares(r);
-  if (r.ranks.size() > 1) print_rank_shares(r);
-}
-
 // --resume: the checkpoint's film, checked against this render (exit 2 on any mismatch).
-// --checkpoint: a callback saving the film between passes. Both before any device work.
-void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, RenderRequest& request) {
+// --checkpoint: a callback saving the film between passes. Both before any device work; `times`
+// takes the checkpoint's load and the saves.
+void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, RenderRequest& request,
+                                    RenderCommandTimes& times) {
   if (!o.resume.empty()) {
+    const Clock::time_point start = Clock::now();
     request.resume = load_checkpoint(o.resume, scene, o.adaptive);
+    times.resume_load = seconds_since(start);
     const uint64_t done = request.resume->samples_per_pixel();
     if (request.spp_given && done > uint64_t(scene.settings.spp))
       throw Error(ExitCode::Usage, "--spp " + std::to_string(scene.settings.spp) + ": the checkpoint " +
@@ -209,15 +173,17 @@ void prepare_resume_and_checkpoints(const RenderOptions& o, const Scene& scene, 
   }
   if (o.checkpoint.empty()) return;
   request.checkpoint_every_s = o.checkpoint_every_s;
-  request.checkpoint = [path = o.checkpoint, &scene, adaptive = o.adaptive](const Film& film) {
+  request.checkpoint = [path = o.checkpoint, &scene, adaptive = o.adaptive, &times](const Film& film) {
+    const Clock::time_point start = Clock::now();
     save_checkpoint(path, scene, film, adaptive);
+    times.output += seconds_since(start);
   };
 }
 
 // After the passes: the final checkpoint, then the image of every finished pass. Returns the exit
 // code: Interrupted (130) whenever SIGINT/SIGTERM arrived, even if the last pass completed.
 int finish_outputs(const RenderOptions& o, const std::string& out, const Film& film, const Scene& scene,
-                   const RenderReport& report) {
+                   const RenderReport& report, RenderCommandTimes& times) {
   const bool signalled = interrupt_flag().load();
   const unsigned long long spp = film.samples_per_pixel();
   if (spp == 0) {  // interrupted before the first pass finished (and nothing resumed)
@@ -225,10 +191,14 @@ int finish_outputs(const RenderOptions& o, const std::string& out, const Film& f
     return static_cast<int>(ExitCode::Interrupted);
   }
   if (!o.checkpoint.empty()) {
+    const Clock::time_point start = Clock::now();
     save_checkpoint(o.checkpoint, scene, film, o.adaptive);
+    times.output += seconds_since(start);
     if (!o.quiet) std::printf("wrote checkpoint %s (%llu spp)\n", o.checkpoint.c_str(), spp);
   }
-  write_outputs(o, out, film, scene, report);
+  const Clock::time_point start = Clock::now();
+  write_outputs(o, out, film, scene, report, times);
+  times.output += seconds_since(start);
   if (!signalled) return 0;
   std::fprintf(stderr, "clpt: interrupted: wrote the %llu finished samples per pixel%s\n", spp,
                report.interrupted ? "" : " (the render had completed)");
@@ -247,15 +217,18 @@ int run_as_worker(RankGroup& ranks, const RenderRequest& request) {
 }
 
 int run(const RenderOptions& o) {
+  RenderCommandTimes times;
   // Under an MPI launcher: the job's ranks (loads MPI); otherwise this process alone.
   RankGroup& ranks = process_rank_group();
   const bool writes = ranks.coordinator();  // rank 0 alone checks and writes the outputs
   const std::string out = writes ? output_path(o) : "";
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (writes && !o.checkpoint.empty()) check_output_file("--checkpoint", o.checkpoint);
+  const Clock::time_point load_start = Clock::now();
   Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
+  times.scene_load = seconds_since(load_start);
 
   RenderRequest request;
   request.device = o.device;
@@ -300,10 +273,11 @@ int run(const RenderOptions& o) {
   install_interrupt_handlers(writes ? InterruptNotes::Print : InterruptNotes::Silent);
   request.interrupt = &interrupt_flag();
   if (!writes) return run_as_worker(ranks, request);
-  prepare_resume_and_checkpoints(o, scene, request);
+  prepare_resume_and_checkpoints(o, scene, request, times);
   const Film film = run_render(request, report);
-  if (!o.quiet) print_summary(scene, report);
-  const int code = finish_outputs(o, out, film, scene, report);  // throws: main ends the job
+  if (!o.quiet) print_render_summary(scene, report);
+  const int code = finish_outputs(o, out, film, scene, report, times);  // throws: main ends the job
+  if (!o.quiet) print_render_times(report, times);
   std::vector<uint8_t> code_for_workers = {uint8_t(code)};
   ranks.broadcast(code_for_workers);
   return code;

@@ -30,6 +30,20 @@ constexpr const char* kErrorEstimate = "clpt:error_estimate";
 constexpr const char* kTargetError = "clpt:target_error";
 constexpr const char* kStop = "clpt:stop";
 constexpr const char* kAdaptive = "clpt:adaptive";
+constexpr const char* kPaths = "clpt:paths";
+constexpr const char* kSegments = "clpt:segments";
+constexpr const char* kPassesS = "clpt:passes_s";
+constexpr const char* kPathsPerS = "clpt:paths_per_s";
+constexpr const char* kSegmentsPerS = "clpt:segments_per_s";
+constexpr const char* kSceneLoadS = "clpt:scene_load_s";
+constexpr const char* kResumeLoadS = "clpt:resume_load_s";
+constexpr const char* kDiscoveryS = "clpt:discovery_s";
+constexpr const char* kConvertS = "clpt:convert_s";
+constexpr const char* kKernelBuildS = "clpt:kernel_build_s";
+constexpr const char* kKernelBuild = "clpt:kernel_build";
+constexpr const char* kFirstLaunchS = "clpt:first_launch_s";
+constexpr const char* kOutputS = "clpt:output_s";
+constexpr const char* kElapsedS = "clpt:elapsed_s";
 
 std::string text(const ImageMetadata& m, const char* key) {
   const auto it = m.find(key);
@@ -108,6 +122,23 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   if (info.error_estimate) m[kErrorEstimate] = real_text(*info.error_estimate);
   if (info.target_error) m[kTargetError] = real_text(*info.target_error);
   if (!info.stop.empty()) m[kStop] = info.stop;
+  put(kPaths, info.paths);
+  put(kSegments, info.segments);
+  auto put_real = [&m](const char* key, const std::optional<double>& value) {
+    if (value) m[key] = real_text(*value);
+  };
+  put_real(kPassesS, info.passes_s);
+  put_real(kPathsPerS, info.paths_per_s);
+  put_real(kSegmentsPerS, info.segments_per_s);
+  put_real(kSceneLoadS, info.scene_load_s);
+  put_real(kResumeLoadS, info.resume_load_s);
+  put_real(kDiscoveryS, info.discovery_s);
+  put_real(kConvertS, info.convert_s);
+  put_real(kKernelBuildS, info.kernel_build_s);
+  if (!info.kernel_build.empty()) m[kKernelBuild] = info.kernel_build;
+  put_real(kFirstLaunchS, info.first_launch_s);
+  put_real(kOutputS, info.output_s);
+  put_real(kElapsedS, info.elapsed_s);
   return m;
 }
 
@@ -130,6 +161,20 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.error_estimate = real(m, kErrorEstimate);
   info.target_error = real(m, kTargetError);
   info.stop = text(m, kStop);
+  info.paths = number<uint64_t>(m, kPaths);
+  info.segments = number<uint64_t>(m, kSegments);
+  info.passes_s = real(m, kPassesS);
+  info.paths_per_s = real(m, kPathsPerS);
+  info.segments_per_s = real(m, kSegmentsPerS);
+  info.scene_load_s = real(m, kSceneLoadS);
+  info.resume_load_s = real(m, kResumeLoadS);
+  info.discovery_s = real(m, kDiscoveryS);
+  info.convert_s = real(m, kConvertS);
+  info.kernel_build_s = real(m, kKernelBuildS);
+  info.kernel_build = text(m, kKernelBuild);
+  info.first_launch_s = real(m, kFirstLaunchS);
+  info.output_s = real(m, kOutputS);
+  info.elapsed_s = real(m, kElapsedS);
   return info;
 }
 

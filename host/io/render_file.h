@@ -41,6 +41,24 @@ struct RenderFileInfo {
   std::optional<double> error_estimate;
   std::optional<double> target_error;   // clpt:target_error, the --target-error asked for
   std::string stop;                     // clpt:stop: sample count | time limit | target error
+  // Where the time went, in seconds of wall clock, as the render's summary prints it
+  // (cli/render_summary.h); unset in files of a clpt before these keys. The parts do not overlap.
+  std::optional<uint64_t> paths;            // clpt:paths, paths traced by this run (not a resumed film's)
+  std::optional<uint64_t> segments;         // clpt:segments, their ray segments
+  std::optional<double> passes_s;           // clpt:passes_s, the passes: their launches and the waits for them
+  std::optional<double> paths_per_s;        // clpt:paths_per_s, paths / passes_s
+  std::optional<double> segments_per_s;     // clpt:segments_per_s, segments / passes_s
+  std::optional<double> scene_load_s;       // clpt:scene_load_s, the scene file and its mesh files
+  std::optional<double> resume_load_s;      // clpt:resume_load_s, the --resume checkpoint (only then)
+  std::optional<double> discovery_s;        // clpt:discovery_s, OpenCL devices listed and selected, the plan made
+  std::optional<double> convert_s;          // clpt:convert_s, the scene converted for the kernels, its hierarchy built
+  std::optional<double> kernel_build_s;     // clpt:kernel_build_s, the kernels' build (the slowest device's)
+  std::string kernel_build;                 // clpt:kernel_build: compiled | clpt cache hit
+  std::optional<double> first_launch_s;     // clpt:first_launch_s, the kernels' first launch, apart from the passes
+  std::optional<double> output_s;           // clpt:output_s, outputs written before this file (checkpoints)
+  // clpt:elapsed_s, from the command's start to when this file's metadata was made: every part
+  // above and the rest, but not the writing of this file and its PNG (the summary's wall has it).
+  std::optional<double> elapsed_s;
 };
 
 ImageMetadata render_metadata(const RenderFileInfo& info);

@@ -55,8 +55,9 @@ struct DevicePool::Member {
   double launch_rate = 0;        // pixel-samples/s of its last range (sizes the next one)
   uint32_t previous_pixels = 0;  // pixels of its last range
   // Its share of the work follows its throughput over the last pass and this one: recent enough
-  // to follow a change of load, long enough to forget the first launch's kernel compilation.
+  // to follow a change of load, long enough to forget a slow first launch (a new launch size).
   Throughput last_pass, this_pass;
+  std::vector<StageTime> warm_up_stages;  // the renderer's stage times of warm_up, not of a pass
   uint64_t launches_started = 0;
   bool failed = false;
   std::exception_ptr error;
@@ -112,6 +113,43 @@ void DevicePool::build(Member& m, const DevicePlan& plan, bool use_kernel_cache,
     m.failed = true;
     m.share.failure = e.what();
     m.error = std::current_exception();
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!fatal_) fatal_ = std::current_exception();
+  }
+}
+
+double DevicePool::warm_up(const GpuRenderParams& params) {
+  const Clock::time_point start = Clock::now();
+  std::vector<Member*> working;
+  for (const auto& m : members_)
+    if (!m->failed) working.push_back(m.get());
+  std::vector<std::thread> threads;
+  for (size_t i = 1; i < working.size(); ++i) threads.emplace_back([&, i] { warm_up(*working[i], params); });
+  if (!working.empty()) warm_up(*working[0], params);
+  for (std::thread& t : threads) t.join();
+  if (fatal_) std::rethrow_exception(fatal_);
+  if (working_count() == 0) throw_every_device_failed();
+  return seconds_since(start);
+}
+
+void DevicePool::warm_up(Member& m, const GpuRenderParams& params) {
+  // One lockstep work-group's worth (the megakernel's on CPUs) and a wavefront's local size.
+  constexpr uint32_t kWarmUpPixels = 64;
+  GpuRenderParams p = params;
+  p.pixel_begin = 0;
+  p.pixel_count = std::min(params.pixel_count, kWarmUpPixels);
+  p.sample_begin = 0;
+  p.samples_per_pass = 1;
+  p.slotted = 0;
+  const Clock::time_point start = Clock::now();
+  try {
+    m.renderer->render_pass(p, nullptr);
+    m.share.first_launch_seconds = seconds_since(start);
+    m.warm_up_stages = m.renderer->stage_times();
+  } catch (const Error& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    retire(m, e.what(), std::current_exception());
   } catch (...) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (!fatal_) fatal_ = std::current_exception();
@@ -313,6 +351,11 @@ std::vector<StageTime> DevicePool::stage_times() const {
       sum.label = t.label;
       sum.seconds += t.seconds;
       sum.launches += t.launches;
+    }
+    for (const StageTime& t : m->warm_up_stages) {  // the passes' only
+      StageTime& sum = stages[t.label];
+      sum.seconds -= t.seconds;
+      sum.launches -= t.launches;
     }
   }
   std::vector<StageTime> out;

@@ -34,7 +34,8 @@ struct DeviceShare {
   std::string device;             // label, "device 'NAME' (PLATFORM)"
   ExecutionForm form = ExecutionForm::Megakernel;
   bool built = false;             // its context and renderer were set up (a failed set-up: false)
-  double build_seconds = 0;
+  double build_seconds = 0;       // the program's build (clBuildProgram, or a binary from a cache)
+  double first_launch_seconds = 0;  // warm_up's launch: what the driver compiles at a first launch
   uint64_t paths = 0;             // samples it traced in this run
   uint64_t segments = 0;          // ray segments of those samples
   uint64_t launches = 0;          // pixel ranges it traced
@@ -53,6 +54,16 @@ class DevicePool {
   ~DevicePool();
   DevicePool(const DevicePool&) = delete;
   DevicePool& operator=(const DevicePool&) = delete;
+
+  // Launches every working device's kernels once, in parallel, over the first few pixels of
+  // `params`'s image with one sample each, and drops the results (sample indices are fixed by
+  // pixel and number, so no pass draws differently for it). What a driver compiles at a kernel's
+  // first launch rather than in clBuildProgram (PoCL: the work-group functions, seconds on a cold
+  // cache) is done here, timed as each device's first_launch_seconds, not in the first pass, where
+  // it would count as tracing and size the next launches from a rate it does not have. A device
+  // whose launch throws clpt::Error is retired, as in a pass. Blocking; returns the wall time.
+  // Throws as run_pass does when every device has failed.
+  double warm_up(const GpuRenderParams& params);
 
   // Traces the pass `params` (samples_per_pass from sample_begin, over the whole image) into
   // `film`; every working device pulls ranges until the pass is done. Blocking. Throws as the
@@ -81,7 +92,8 @@ class DevicePool {
 
   // Every device's part so far, in plan order (failed ones too).
   std::vector<DeviceShare> shares() const;
-  // Device time per stage, summed over the devices (wavefront; empty for the megakernel).
+  // Device time per stage of the passes (warm_up's launch left out), summed over the devices
+  // (wavefront; empty for the megakernel).
   std::vector<StageTime> stage_times() const;
   // clpt's kernel binary cache as used by the first device that built (null when off or none).
   std::shared_ptr<KernelCache> kernel_cache() const;
@@ -98,6 +110,7 @@ class DevicePool {
   };
 
   void build(Member& member, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene);
+  void warm_up(Member& member, const GpuRenderParams& params);
   // `first`: the range run_pass handed the member before its thread started.
   void work(Member& member, const GpuRenderParams& params, const GpuSampleSlot* slots, const PassSink& sink,
             PassState& pass, Taken first);

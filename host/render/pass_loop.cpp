@@ -91,8 +91,10 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
     if (decides && decision.next.adaptive) slots = slot_table.pass_slots(film, decision.next, options.request);
     const Clock::time_point pass_start = Clock::now();
     tracer.trace(pass, film, decision.next.adaptive ? &slots : nullptr);
+    const double pass_seconds = seconds_since(pass_start);
+    result.trace_seconds += pass_seconds;
     const double pass_spp = double(pass.samples_per_pass) * pass.pixel_count / std::max<uint32_t>(params.pixel_count, 1);
-    measured.samples_per_pixel_per_s = pass_spp / std::max(1e-9, seconds_since(pass_start));
+    measured.samples_per_pixel_per_s = pass_spp / std::max(1e-9, pass_seconds);
     ++measured.passes;
     ++result.passes;
     if (!decides) continue;
@@ -101,7 +103,7 @@ PassLoopResult run_passes(PassTracer& tracer, const GpuRenderParams& params, Fil
     shown.passes = result.passes;
     shown.spp_done = film.samples_per_pixel();
     shown.spp_target = options.request.target_spp;
-    shown.samples_per_s = double(film.total_samples() - samples_before) / std::max(1e-9, seconds_since(t0));
+    shown.samples_per_s = double(film.total_samples() - samples_before) / std::max(1e-9, result.trace_seconds);
     shown.elapsed_s = seconds_since(t0);
     shown.time_limit_s = options.request.time_limit_s;
     shown.spp_this_run = film.samples_per_pixel() - spp_before;

@@ -32,6 +32,10 @@ struct PassLoopOptions {
 // What the loop did.
 struct PassLoopResult {
   int passes = 0;
+  // Wall time of the passes themselves, summed: each PassTracer::trace, i.e. the launches and the
+  // waits for them (and in an MPI job the ranks' parts reaching rank 0), as `clpt bench` times a
+  // pass; not the work between passes (error estimates, progress, checkpoints).
+  double trace_seconds = 0;
   bool interrupted = false;  // stopped early: the interrupt was set before the target was reached
   StopReason stop = StopReason::None;  // what ended it (None when interrupted)
   ErrorEstimate estimate;              // of the final film

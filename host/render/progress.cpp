@@ -35,7 +35,7 @@ void Progress::update(const ProgressState& s) {
     else
       std::snprintf(error, sizeof error, "  error ? (target %.2f%%)", 100 * s.target_error);
   }
-  std::fprintf(stderr, "\r  pass %d  %llu%s spp  %.2f M samples/s%s  elapsed %.1f s  ETA %.1f s   ", s.passes,
+  std::fprintf(stderr, "\r  pass %d  %llu%s spp  %.2f M samples/s in passes%s  elapsed %.1f s  ETA %.1f s   ", s.passes,
                (unsigned long long)s.spp_done, target, s.samples_per_s * 1e-6, error, s.elapsed_s,
                std::max(0.0, progress_eta_s(s)));
   std::fflush(stderr);

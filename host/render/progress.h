@@ -14,7 +14,7 @@ struct ProgressState {
   uint64_t spp_done = 0;
   uint64_t spp_target = 0;     // 0: no sample limit
   uint64_t spp_this_run = 0;   // samples per pixel this process added (a resumed film had some)
-  double samples_per_s = 0;
+  double samples_per_s = 0;    // this run's samples over the passes' time (PassLoopResult::trace_seconds)
   double elapsed_s = 0;
   double time_limit_s = 0;     // 0: none
   double target_error = 0;     // 0: none; else estimate and predicted_spp are shown

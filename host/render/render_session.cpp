@@ -56,23 +56,31 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   // 1. The devices (one, or several sharing every pass) and every decision of the render; the
   //    ranks of an MPI job check that they all render the same thing.
+  const Clock::time_point discovery_start = Clock::now();
   const RenderPlan plan = plan_render(request, select_devices(list_devices(), request.device));
+  report.discovery_seconds = seconds_since(discovery_start);
   RankGroup* ranks = request.ranks && request.ranks->size() > 1 ? request.ranks : nullptr;
   if (ranks) check_ranks_agree(*ranks, render_identity(request, plan));
   const bool coordinator = !ranks || ranks->coordinator();
   if (request.on_plan && coordinator) request.on_plan(plan);
 
   // 2. The scene as the kernels see it; on each device a context and a kernel built as planned,
-  //    in parallel. A rank whose devices all fail takes no part; the others carry on.
+  //    in parallel, and launched once apart from the passes (DevicePool::warm_up: what a driver
+  //    compiles at a first launch). A rank whose devices all fail takes no part; the others carry on.
+  const Clock::time_point convert_start = Clock::now();
   const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision);
+  report.convert_seconds = seconds_since(convert_start);
   const FaultPlan faults = request.faults ? *request.faults : FaultPlan::from_environment();
   std::unique_ptr<DevicePool> pool;
   std::string failure;
+  const GpuRenderParams params = make_params(scene, device_scene);
   try {
     pool = std::make_unique<DevicePool>(plan, device_scene, faults);
+    report.first_launch_seconds = pool->warm_up(params);
   } catch (const Error& e) {
     if (!ranks) throw;
     failure = e.what();
+    pool.reset();
   }
   std::unique_ptr<RankPassTracer> rank_tracer;
   std::unique_ptr<DevicePoolTracer> pool_tracer;
@@ -87,10 +95,11 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   Film film = request.resume && coordinator ? *request.resume : Film(settings.width, settings.height);
   const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
   const auto t0 = Clock::now();
-  const PassLoopResult passes = run_passes(tracer, make_params(scene, device_scene), film, pass_loop_options(plan, request));
+  const PassLoopResult passes = run_passes(tracer, params, film, pass_loop_options(plan, request));
 
   // 4. What happened.
   report.render_seconds = seconds_since(t0);
+  report.pass_seconds = passes.trace_seconds;
   report.passes = passes.passes;
   report.interrupted = passes.interrupted;
   report.stop = passes.stop;

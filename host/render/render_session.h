@@ -22,11 +22,21 @@ namespace clpt {
 class KernelCache;
 
 // What a render did: the plan's first device's form and options, and every device's part.
+// Its times (seconds, wall clock) do not overlap, so their sum is at most the render's wall time;
+// what they leave out is the devices' contexts and scene uploads, and the work between passes.
 struct RenderReport {
   std::string device;          // label of the device used (several: joined with " + ")
   std::string build_options;   // of the first device that built
+  double discovery_seconds = 0;  // the OpenCL platforms and devices listed, selected, the plan made
+  double convert_seconds = 0;  // the scene converted for the kernels, its hierarchy built (device_scene.h)
   double build_seconds = 0;    // program build, including any driver cache hit (the slowest device)
-  double render_seconds = 0;   // passes only
+  double first_launch_seconds = 0;  // DevicePool::warm_up: what drivers compile at a first launch
+  // The passes alone: their launches and the waits for them (PassLoopResult::trace_seconds), the
+  // time `clpt bench` measures; every rate of the summary is over this time.
+  double pass_seconds = 0;
+  // The pass loop: the passes and the work between them (error estimates, progress, checkpoints);
+  // what --time limits.
+  double render_seconds = 0;
   int passes = 0;
   uint64_t spp = 0;
   uint64_t paths = 0;

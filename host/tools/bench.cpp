@@ -168,7 +168,7 @@ std::vector<RankRate> rank_scaling(const BenchConfig& c, RenderRequest request, 
       for (int run = 0; run < c.warmup + c.repeat; ++run) {
         RenderReport report;
         run_render(request, report);
-        if (run >= c.warmup) rates.push_back(double(report.paths) / std::max(report.render_seconds, 1e-9));
+        if (run >= c.warmup) rates.push_back(double(report.paths) / std::max(report.pass_seconds, 1e-9));
       }
     });
     if (!group.coordinator()) continue;

@@ -281,7 +281,7 @@ Rendered render(const Scene& scene, ExecutionForm form, Precision precision, con
   request.faults = faults;
   RenderReport report;
   const Film film = run_render(request, report);
-  return {film.mean_variance(), double(report.paths) / std::max(1e-9, report.render_seconds)};
+  return {film.mean_variance(), double(report.paths) / std::max(1e-9, report.pass_seconds)};
 }
 
 // A rate for the table: "6.54 M", "12.3 k" or "196" (a simulator runs a few hundred paths/s).
