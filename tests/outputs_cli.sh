@@ -4,7 +4,8 @@
 #      "cannot make absolute path"),
 #  (b) a name in another existing directory,
 #  (c) a place where no file can be made: under a regular file (which stops root too), in a
-#      directory that does not exist, and the name of an existing directory.
+#      directory that does not exist, and the name of an existing directory (an output directory:
+#      a regular file, or one that does not exist).
 # (a) and (b) exit 0 and write every file; (c) exits 5 (the output error) before any work, naming
 # the option and the path, and writes nothing. No temporary file (.NAME.clpt-tmp-PID.EXT,
 # util/atomic_file.h) is ever left behind.
@@ -74,8 +75,10 @@ run_all_in() {
     --no-vector-width --json "${d}b.json"
   succeeds "tradeoff -o --plot, $where" "${d}t.csv ${d}t.png" -- tradeoff "$scene" --reference inputs/a.exr \
     "${tiny[@]}" --form megakernel --budgets 0.02 -q -o "${d}t.csv" --plot "${d}t.png"
-  succeeds "verify --json, $where" "${d}v.json" -- verify --device cpu --scenes diffuse --forms megakernel \
-    --precisions robust --width 16 --height 12 --spp 16 -q --json "${d}v.json"
+  mkdir -p "${d}films"
+  succeeds "verify --json --save-reference-films, $where" "${d}v.json ${d}films/films.json" -- \
+    verify --device cpu --reference device --scenes diffuse --forms megakernel --precisions robust --width 16 \
+    --height 12 --spp 16 -q --json "${d}v.json" --save-reference-films "${d}films"
   mkdir -p "${d}kernels"
   succeeds "kernels emit, $where" "${d}kernels/variants.txt" -- kernels emit "${d}kernels" --scene "$scene"
 }
@@ -106,8 +109,12 @@ for bad in afile/x nowhere/x adir; do
     tradeoff "$scene" --reference inputs/a.exr "${tiny[@]}" --budgets 0.02 --plot "$bad.png"
   refuses "verify --json $bad.json" --json "$bad.json" -- verify --scenes diffuse --json "$bad.json"
 done
-refuses "kernels emit afile" "kernels emit" afile/variants.txt -- kernels emit afile --scene "$scene"
-refuses "kernels emit nowhere" "kernels emit" nowhere/variants.txt -- kernels emit nowhere --scene "$scene"
+refuses "kernels emit afile" "kernels emit" afile -- kernels emit afile --scene "$scene"
+refuses "kernels emit nowhere" "kernels emit" nowhere -- kernels emit nowhere --scene "$scene"
+refuses "verify --save-reference-films afile" --save-reference-films afile -- \
+  verify --reference device --scenes diffuse --save-reference-films afile
+refuses "verify --save-reference-films nowhere" --save-reference-films nowhere -- \
+  verify --reference device --scenes diffuse --save-reference-films nowhere
 no_temporaries "the refused outputs"
 
 if [[ $failures -ne 0 ]]; then

@@ -119,7 +119,6 @@ expect_usage "--reference films: --reference-dir names the films' directory" --r
 expect_usage "--reference films: $work/nowhere/films.json: no such file" --reference films --reference-dir "$work/nowhere"
 expect_usage "--save-reference-films: only a PoCL reference device's renders are saved" --reference builtin \
   --save-reference-films "$work"
-expect_usage "--save-reference-films $work/nowhere: no such directory" --reference device --save-reference-films "$work/nowhere"
 mkdir -p films && "$clpt" verify --device cpu --reference device --save-reference-films films --scenes diffuse \
   --forms megakernel --precisions robust --width 16 --height 12 --spp 64 -q >films.out 2>&1 ||
   { fail "saving films"; show films.out; }
@@ -130,13 +129,19 @@ status=$?
   { fail "films mode with a subset of the matrix: exit $status"; show films2.out; }
 CLPT_INJECT_FAULT=perturb:0:X:1.02 expect_usage "CLPT_INJECT_FAULT='perturb:0:X:1.02': entry 'perturb:0:X:1.02'" \
   --scenes diffuse
-# An --json in a directory that does not exist: the output error (5), before any rendering.
+# An --json or --save-reference-films in a directory that does not exist: the output error (5),
+# before any rendering.
 "$clpt" verify --json "$work/nowhere/v.json" >bad.out 2>bad.err
 status=$?
 [[ $status -eq 5 ]] || fail "verify --json in a missing directory exited $status, expected 5"
 grep -qF -- "--json $work/nowhere/v.json: directory '$work/nowhere' does not exist" bad.err ||
   { fail "verify --json in a missing directory: wrong message"; show bad.err; }
 grep -q "PASS\|FAIL" bad.out && fail "verify --json in a missing directory: rendered rows"
+"$clpt" verify --reference device --save-reference-films "$work/nowhere" >bad.out 2>bad.err
+status=$?
+[[ $status -eq 5 ]] || fail "verify --save-reference-films in a missing directory exited $status, expected 5"
+grep -qF -- "--save-reference-films $work/nowhere: directory '$work/nowhere' does not exist" bad.err ||
+  { fail "verify --save-reference-films in a missing directory: wrong message"; show bad.err; }
 
 if [[ $failures -gt 0 ]]; then echo "$failures failure(s)"; exit 1; fi
 echo "all verify CLI checks passed"

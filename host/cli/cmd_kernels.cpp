@@ -36,7 +36,7 @@ int list_variants() {
 }
 
 int emit_variants(const KernelsOptions& o) {
-  check_output_file("kernels emit", (std::filesystem::path(o.directory) / "variants.txt").string());
+  check_output_directory("kernels emit", o.directory);
   const Scene diffuse = load_scene_file(o.scene);
   std::string names;
   for (const KernelVariant& v : covering_kernel_variants()) {

@@ -177,8 +177,7 @@ Resolved resolve(const VerifyConfig& config, VerifyReport& report) {
   if (!config.save_films_dir.empty() && r.mode != ReferenceMode::Device)
     throw Error(ExitCode::Usage, "--save-reference-films: only a PoCL reference device's renders are saved "
                                  "(--reference device)");
-  if (!config.save_films_dir.empty() && !fs::is_directory(config.save_films_dir))
-    throw Error(ExitCode::Usage, "--save-reference-films " + config.save_films_dir + ": no such directory");
+  if (!config.save_films_dir.empty()) check_output_directory("--save-reference-films", config.save_films_dir);
   if (r.mode == ReferenceMode::Device && !pocl)
     throw Error(ExitCode::DeviceError, "--reference device: no PoCL CPU device (platform '" +
                                            std::string(kPoclPlatformName) +

@@ -16,23 +16,38 @@ std::filesystem::path directory_of(const std::string& path) {
   return parent.empty() ? std::filesystem::path(".") : parent;
 }
 
-void check_output_file(const std::string& option, const std::string& path) {
-  const std::filesystem::path dir = directory_of(path);
-  const std::string what = option + " " + path + ": ";
+namespace {
+
+// `dir` exists, is a directory and takes a new file (named after `probe_for`, then removed); else
+// Error(OutputError) beginning with `what`.
+void check_directory_takes_files(const std::string& what, const std::filesystem::path& dir,
+                                 const std::string& probe_for) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error(ExitCode::OutputError, what + "a directory of that name exists");
   const std::filesystem::file_status status = std::filesystem::status(dir, ec);
   if (!std::filesystem::exists(status))
     throw Error(ExitCode::OutputError, what + "directory '" + dir.string() + "' does not exist");
   if (!std::filesystem::is_directory(status))
     throw Error(ExitCode::OutputError, what + "'" + dir.string() + "' is not a directory");
-  const std::string probe = temporary_path_for(path);
+  const std::string probe = temporary_path_for(probe_for);
   std::FILE* f = std::fopen(probe.c_str(), "wb");
   if (!f)
     throw Error(ExitCode::OutputError,
                 what + "cannot create a file in directory '" + dir.string() + "': " + std::strerror(errno));
   std::fclose(f);
   std::remove(probe.c_str());
+}
+
+}  // namespace
+
+void check_output_file(const std::string& option, const std::string& path) {
+  const std::string what = option + " " + path + ": ";
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(ExitCode::OutputError, what + "a directory of that name exists");
+  check_directory_takes_files(what, directory_of(path), path);
+}
+
+void check_output_directory(const std::string& option, const std::string& dir) {
+  check_directory_takes_files(option + " " + dir + ": ", dir, (std::filesystem::path(dir) / "probe").string());
 }
 
 std::string temporary_path_for(const std::string& path) {

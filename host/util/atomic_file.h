@@ -18,6 +18,10 @@ std::filesystem::path directory_of(const std::string& path);
 // the path and why not.
 void check_output_file(const std::string& option, const std::string& path);
 
+// The same for an output directory that files will be written into (`kernels emit DIR`,
+// `verify --save-reference-films DIR`): it exists, is a directory and takes a new file.
+void check_output_directory(const std::string& option, const std::string& dir);
+
 // ".STEM.clpt-tmp-PID.EXT" beside `path`: same directory (rename stays on one file system) and
 // same extension (image writers pick the format from it).
 std::string temporary_path_for(const std::string& path);
