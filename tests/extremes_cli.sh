@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `clpt scene-transform` end to end and the safe-range warning of `clpt render`:
-#  - a transformed scene is written, loads and renders; bad options exit 2 and bad scenes 3,
+#  - a transformed scene is written, loads and renders; bad options exit 2, bad scenes 3 and an
+#    output in a directory that does not exist 5,
 #    naming the option or file, and leave no file behind;
 #  - the book scene renders without a warning; a tiny sphere far away and a camera touching the
 #    floor each get one naming the sphere and its file line;
@@ -32,7 +33,8 @@ expect_error 2 "--scale" scene-transform "$book" --scale -1 -o out.toml
 expect_error 2 "--translate" scene-transform "$book" --translate 1,2 -o out.toml
 expect_error 2 "--translate" scene-transform "$book" --translate 1,x,2 -o out.toml
 expect_error 2 "--output" scene-transform "$book" --scale 2
-expect_error 2 "no/such/dir" scene-transform "$book" --scale 2 -o no/such/dir/out.toml
+expect_error 5 "-o no/such/dir/out.toml: directory 'no/such/dir' does not exist" \
+  scene-transform "$book" --scale 2 -o no/such/dir/out.toml
 expect_error 3 "missing.toml" scene-transform missing.toml --scale 2 -o out.toml
 expect_error 3 "radius must be > 0" scene-transform "$src/tests/scenes/bad/zero_radius.toml" -o out.toml
 
