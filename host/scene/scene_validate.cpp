@@ -174,13 +174,12 @@ void check_light(const PunctualLight& light, const std::string& key, const Sourc
   require_finite(light.range, key + ".range", sources);
   if (light.range < 0) fail_at(sources, key + ".range", "range must be >= 0 (got " + format_number(light.range) + ")");
   if (light.type != LightType::Spot) return;
-  const double degrees = 180 / 3.14159265358979323846;
-  require_in_range(light.inner_cone_rad * degrees, 0, 90, key + ".inner_cone_deg", sources);
-  require_in_range(light.outer_cone_rad * degrees, 0, 90, key + ".outer_cone_deg", sources);
+  require_in_range(degrees_of(light.inner_cone_rad), 0, 90, key + ".inner_cone_deg", sources);
+  require_in_range(degrees_of(light.outer_cone_rad), 0, 90, key + ".outer_cone_deg", sources);
   if (!(light.inner_cone_rad < light.outer_cone_rad))
     fail_at(sources, key + ".inner_cone_deg",
-            "inner_cone_deg must be below outer_cone_deg (got " + format_number(light.inner_cone_rad * degrees) +
-                " and " + format_number(light.outer_cone_rad * degrees) + ")");
+            "inner_cone_deg must be below outer_cone_deg (got " + format_number(degrees_of(light.inner_cone_rad)) +
+                " and " + format_number(degrees_of(light.outer_cone_rad)) + ")");
 }
 
 // The camera must define a view direction, and `up` must pick a roll around it.
@@ -359,6 +358,10 @@ void validate_scene(const Scene& scene, const SourceMap& sources) {
     check_material(scene.meshes[i].material, "mesh[" + std::to_string(i) + "].material", sources);
   for (size_t i = 0; i < scene.lights.size(); ++i) check_light(scene.lights[i], "light[" + std::to_string(i) + "]", sources);
   require_emitter(scene, sources);
+}
+
+double degrees_of(double radians) {
+  return std::round(radians * (180 / 3.14159265358979323846) * 1e9) / 1e9;
 }
 
 }  // namespace clpt::scene_detail

@@ -12,6 +12,7 @@
 
 #include "scene/mesh_file.h"
 #include "scene/pbr_params.h"
+#include "scene/scene_validate.h"
 
 #include "util/atomic_file.h"
 
@@ -93,15 +94,14 @@ toml::table mesh_table(const TriangleMesh& m, const std::string& scene_file, con
 
 // A punctual light as [[light]] writes it, its strength radiometric (`intensity`, W/sr or W/m^2).
 toml::table light_table(const PunctualLight& l) {
-  const double degrees = 180 / 3.14159265358979323846;
   toml::table t{{"name", l.name}, {"type", light_type_name(l.type)}};
   if (l.type != LightType::Directional) t.insert("position", vec3_array(l.position));
   if (l.type != LightType::Point) t.insert("direction", vec3_array(l.direction));
   t.insert("intensity", vec3_array(l.intensity));
   if (l.type != LightType::Directional && l.range > 0) t.insert("range", l.range);
   if (l.type == LightType::Spot) {
-    t.insert("inner_cone_deg", l.inner_cone_rad * degrees);
-    t.insert("outer_cone_deg", l.outer_cone_rad * degrees);
+    t.insert("inner_cone_deg", scene_detail::degrees_of(l.inner_cone_rad));
+    t.insert("outer_cone_deg", scene_detail::degrees_of(l.outer_cone_rad));
   }
   return t;
 }
