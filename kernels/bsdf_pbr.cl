@@ -34,6 +34,10 @@
 #include "maths.cl"
 #include "rng.cl"
 
+#ifndef CLPT_HAS_PBR_VOLUME
+#define CLPT_HAS_PBR_VOLUME 1
+#endif
+
 /* pbrt-v4's "effectively smooth" bound: a lobe narrower than about 1e-3 radians, whose D
  * (1 / (pi alpha^2) at its peak) would also lose float precision as alpha shrinks further. */
 #define CLPT_PBR_DELTA_ALPHA ((real)1e-3f)
@@ -46,10 +50,13 @@ typedef struct PbrParams {
   real f0;           /* dielectric reflectance at normal incidence, ((ior - 1) / (ior + 1))^2 */
   real transmission; /* [0, 1] */
   int delta;         /* alpha < CLPT_PBR_DELTA_ALPHA: specular and transmission are delta lobes */
+  int volume;        /* the transmission refracts into a volume (KHR_materials_volume, thickness > 0) */
+  real ior;          /* index of refraction inside */
+  real eta;          /* volume: index on the far side of the surface / on wo's side (the frame's) */
   CLPT_ABI_PAD(int, 1)
 } PbrParams;
 
-CLPT_INLINE PbrParams pbr_params(Vec3 base, real metallic, real roughness, real ior, real transmission) {
+CLPT_INLINE PbrParams pbr_params(Vec3 base, real metallic, real roughness, real ior, real transmission, int volume) {
   PbrParams p;
   p.base = base;
   p.metallic = metallic;
@@ -58,6 +65,9 @@ CLPT_INLINE PbrParams pbr_params(Vec3 base, real metallic, real roughness, real 
   p.f0 = r * r;
   p.transmission = transmission;
   p.delta = p.alpha < CLPT_PBR_DELTA_ALPHA ? 1 : 0;
+  p.volume = volume;
+  p.ior = ior;
+  p.eta = ior;
   return p;
 }
 
@@ -136,6 +146,46 @@ CLPT_INLINE PbrLobes pbr_lobes(const PbrParams* p, real cos_o) {
   return l;
 }
 
+#if CLPT_HAS_PBR_VOLUME
+/* The rough refraction into (or out of) a volume, Walter et al. 2007's microfacet BTDF with the
+ * GGX D and the height-correlated G2, as pbrt-v4's dielectric forms it: f cos towards wi (below
+ * the surface, wo above) and in *pdf the density of wi when the half vector is a visible normal
+ * of wo refracted with p->eta. Weighted by the base layer's (1 - metallic) transmission base and
+ * Schlick's transmittance at wo.h; radiance is scaled by 1 / eta^2. 0 for a delta lobe. */
+CLPT_INLINE Vec3 pbr_refraction_eval(const PbrParams* p, Vec3 wo, Vec3 wi, real* pdf) {
+  const real eta = p->eta;
+  Vec3 wm = v3_add(v3_scale(wi, eta), wo);
+  const real len2 = v3_dot(wm, wm);
+  wm = v3_scale(wm, len2 > (real)0 ? (real)1 / clpt_sqrt(len2) : (real)0);
+  wm = v3_select(wm.z < (real)0, v3_neg(wm), wm);
+  const real i_m = v3_dot(wi, wm), o_m = v3_dot(wo, wm);
+  const real cos_o = wo.z, cos_i = fabs(wi.z);
+  const real root = i_m + o_m / eta;
+  const real denom = root * root;
+  const real alpha2 = p->alpha * p->alpha;
+  /* Microfacets facing away from either direction carry nothing. */
+  const bool ok = p->delta == 0 && len2 > (real)0 && i_m < (real)0 && o_m > (real)0 && denom > (real)0 && cos_i > (real)0;
+  const real d = ggx_d(alpha2, wm.z);
+  const real g2 = (real)4 * ggx_visibility(alpha2, cos_o, cos_i) * cos_o * cos_i;
+  const real transmittance = (real)1 - (p->f0 + ((real)1 - p->f0) * schlick_weight(o_m));
+  const real f = d * g2 * fabs(i_m * o_m) / (denom * cos_i * cos_o) / (eta * eta);
+  *pdf = ok ? ggx_g1(alpha2, cos_o) * d * o_m / cos_o * fabs(i_m) / denom : (real)0;
+  const real weight = ok ? ((real)1 - p->metallic) * p->transmission * transmittance * f * cos_i : (real)0;
+  return v3_scale(p->base, weight);
+}
+
+/* wo (above) refracted through the microfacet normal m into the far side with p->eta; *tir when
+ * there is no refracted direction (then the reflection about m is returned). */
+CLPT_INLINE Vec3 pbr_refract(const PbrParams* p, Vec3 wo, Vec3 m, bool* tir) {
+  const real c = v3_dot(wo, m);
+  const real sin2_t = ((real)1 - c * c) / (p->eta * p->eta);
+  *tir = sin2_t >= (real)1;
+  const real cos_t = clpt_sqrt(fmax((real)0, (real)1 - sin2_t));
+  const Vec3 refracted = v3_add_scaled(v3_scale(wo, (real)-1 / p->eta), m, c / p->eta - cos_t);
+  return v3_select(*tir, v3_add_scaled(v3_neg(wo), m, (real)2 * c), refracted);
+}
+#endif
+
 /* f cos(theta_i) towards wi and, in *pdf, the density with which pbr_sample_local draws wi; both
  * in the local frame (z the normal on wo's side, wo.z > 0), delta lobes left out. */
 CLPT_INLINE Vec3 pbr_eval_local(const PbrParams* p, const PbrLobes* lobes, Vec3 wo, Vec3 wi, real* pdf) {
@@ -156,10 +206,17 @@ CLPT_INLINE Vec3 pbr_eval_local(const PbrParams* p, const PbrLobes* lobes, Vec3 
       v3_add(v3_add(v3_scale(p->base, under * ((real)1 - p->transmission) / CLPT_PI),
                     v3_splat(((real)1 - p->metallic) * fresnel * specular)),
              v3_scale(fresnel_metal, p->metallic * specular));
-  const Vec3 transmitted = v3_scale(p->base, under * p->transmission * specular);
+  Vec3 transmitted = v3_scale(p->base, under * p->transmission * specular);
   const real specular_pdf = p->delta ? (real)0 : ggx_reflection_pdf(alpha2, cos_o, h.z);
   const real p_above = lobes->diffuse * cos_i / CLPT_PI + lobes->specular * specular_pdf;
-  *pdf = above ? p_above : lobes->transmission * specular_pdf;
+  real p_below = lobes->transmission * specular_pdf;
+#if CLPT_HAS_PBR_VOLUME
+  real volume_pdf;
+  const Vec3 refracted = pbr_refraction_eval(p, wo, wi, &volume_pdf);
+  transmitted = v3_select(p->volume != 0, v3_scale(refracted, (real)1 / cos_i), transmitted);
+  p_below = p->volume != 0 ? lobes->transmission * volume_pdf : p_below;
+#endif
+  *pdf = above ? p_above : p_below;
   return v3_scale(v3_select(above, reflected, transmitted), cos_i);
 }
 
@@ -174,7 +231,12 @@ CLPT_INLINE Vec3 pbr_sample_local(const PbrParams* p, const PbrLobes* lobes, Vec
   const Vec3 diffuse = v3(radius * circle.x, radius * circle.y, clpt_sqrt(fmax((real)0, (real)1 - radius * radius)));
   const Vec3 h = v3_select(p->delta != 0, v3((real)0, (real)0, (real)1), ggx_sample_visible_normal(wo, p->alpha, u.u0, u.u1));
   const Vec3 reflected = v3_add_scaled(v3_neg(wo), h, (real)2 * v3_dot(wo, h));
-  const Vec3 transmitted = v3(reflected.x, reflected.y, -reflected.z);
+  Vec3 transmitted = v3(reflected.x, reflected.y, -reflected.z);
+#if CLPT_HAS_PBR_VOLUME
+  bool tir;
+  const Vec3 refracted = pbr_refract(p, wo, h, &tir);
+  transmitted = v3_select(p->volume != 0, refracted, transmitted);
+#endif
   const Vec3 wi = v3_select(pick_diffuse, diffuse, v3_select(pick_transmission, transmitted, reflected));
   Vec3 f_cos = pbr_eval_local(p, lobes, wo, wi, pdf);
   Vec3 w = v3_scale(f_cos, *pdf > (real)0 ? (real)1 / *pdf : (real)0);
@@ -185,13 +247,22 @@ CLPT_INLINE Vec3 pbr_sample_local(const PbrParams* p, const PbrLobes* lobes, Vec
       v3_add(v3_splat(((real)1 - p->metallic) * (p->f0 + ((real)1 - p->f0) * sw)),
              v3_scale(v3_add(p->base, v3_scale(v3_sub(v3_splat((real)1), p->base), sw)), p->metallic)),
       (real)1 / lobes->specular);
+  real delta_transmitted = under * p->transmission;
+  bool valid = pick_diffuse || reflected.z > (real)0;
+#if CLPT_HAS_PBR_VOLUME
+  /* Smooth refraction: Schlick's transmittance, radiance scaled by 1 / eta^2; under total internal
+   * reflection everything reflects. A rough one is valid when it went below the surface. */
+  const real volume_delta = tir ? (real)1 : ((real)1 - p->f0 - ((real)1 - p->f0) * sw) / (p->eta * p->eta);
+  delta_transmitted = p->volume != 0 ? ((real)1 - p->metallic) * p->transmission * volume_delta : delta_transmitted;
+  const bool refraction_valid = p->delta != 0 || (!tir && refracted.z < (real)0);
+  valid = p->volume != 0 && pick_transmission ? refraction_valid : valid;
+#endif
   const Vec3 delta_transmission =
-      v3_scale(p->base, lobes->transmission > (real)0 ? under * p->transmission / lobes->transmission : (real)0);
+      v3_scale(p->base, lobes->transmission > (real)0 ? delta_transmitted / lobes->transmission : (real)0);
   const bool delta_pick = p->delta != 0 && !pick_diffuse;
   w = v3_select(delta_pick, v3_select(pick_transmission, delta_transmission, delta_specular), w);
   *pdf = delta_pick ? (real)0 : *pdf;
   /* A reflection below the surface (its mirror, the transmission, above it) carries nothing. */
-  const bool valid = pick_diffuse || reflected.z > (real)0;
   *weight = v3_select(valid && v3_all_finite(w), w, v3_splat((real)0));
   *pdf = valid && is_finite_real(*pdf) ? *pdf : (real)0;
   return wi;
@@ -213,14 +284,26 @@ CLPT_INLINE PbrFrame pbr_frame(Vec3 d, Vec3 n) {
   return f;
 }
 
-CLPT_INLINE Vec3 bsdf_pbr_sample(Vec3 d, Vec3 n, const PbrParams* p, Uniform4 u, Vec3* weight, real* pdf) {
+/* The parameters as seen from the side d arrives on: a volume's eta is ior entering (d against
+ * the outward normal n), 1 / ior leaving. */
+CLPT_INLINE PbrParams pbr_params_facing(const PbrParams* p, Vec3 d, Vec3 n) {
+  PbrParams q = *p;
+  q.eta = v3_dot(n, d) < (real)0 ? p->ior : (real)1 / p->ior;
+  return q;
+}
+
+CLPT_INLINE Vec3 bsdf_pbr_sample(Vec3 d, Vec3 n, const PbrParams* params, Uniform4 u, Vec3* weight, real* pdf) {
+  const PbrParams q = pbr_params_facing(params, d, n);
+  const PbrParams* p = &q;
   const PbrFrame f = pbr_frame(d, n);
   const PbrLobes lobes = pbr_lobes(p, f.wo.z);
   const Vec3 wi = pbr_sample_local(p, &lobes, f.wo, u, weight, pdf);
   return v3_add(v3_add(v3_scale(f.t, wi.x), v3_scale(f.b, wi.y)), v3_scale(f.n, wi.z));
 }
 
-CLPT_INLINE Vec3 bsdf_pbr_eval(Vec3 d, Vec3 n, const PbrParams* p, Vec3 wi, real* pdf) {
+CLPT_INLINE Vec3 bsdf_pbr_eval(Vec3 d, Vec3 n, const PbrParams* params, Vec3 wi, real* pdf) {
+  const PbrParams q = pbr_params_facing(params, d, n);
+  const PbrParams* p = &q;
   const PbrFrame f = pbr_frame(d, n);
   const PbrLobes lobes = pbr_lobes(p, f.wo.z);
   const Vec3 wi_local = v3(v3_dot(wi, f.t), v3_dot(wi, f.b), v3_dot(wi, f.n));

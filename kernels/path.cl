@@ -24,7 +24,8 @@
  * and divides the survivors by q: the expectation is unchanged.
  *
  * Specialisation (decided on the host in kernel_options.cpp, one place): CLPT_HAS_PHONG,
- * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_PBR (bsdf_pbr.cl) and CLPT_HAS_PBR_TRANSMISSION,
+ * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_PBR (bsdf_pbr.cl), CLPT_HAS_PBR_TRANSMISSION and
+ * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
  * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
  * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
@@ -71,6 +72,9 @@
 #endif
 #ifndef CLPT_HAS_PBR_TRANSMISSION
 #define CLPT_HAS_PBR_TRANSMISSION CLPT_HAS_PBR
+#endif
+#ifndef CLPT_HAS_PBR_VOLUME
+#define CLPT_HAS_PBR_VOLUME CLPT_HAS_PBR_TRANSMISSION
 #endif
 #ifdef CLPT_ESTIMATOR
 #define CLPT_NEE_COMPILED (CLPT_ESTIMATOR == CLPT_ESTIMATOR_NEE)
@@ -138,6 +142,10 @@ typedef struct SurfaceMaterial {
   real roughness;
   real transmission;
 #endif
+#if CLPT_HAS_PBR_VOLUME
+  real thickness;    /* > 0: the transmission refracts into a closed volume */
+  Vec3 attenuation;  /* Beer's law coefficients inside it, world units^-1 */
+#endif
   CLPT_ABI_PAD(uint, 1)
 } SurfaceMaterial;
 
@@ -157,12 +165,21 @@ CLPT_INLINE SurfaceMaterial material_of(__global const GpuMaterial* m) {
   s.transmission = (real)0;
 #endif
 #endif
+#if CLPT_HAS_PBR_VOLUME
+  s.thickness = m->thickness;
+  s.attenuation = v3_load_sphere_field(m->attenuation);
+#endif
   return s;
 }
 
 #if CLPT_HAS_PBR
 CLPT_INLINE PbrParams pbr_params_of(const SurfaceMaterial* m) {
-  return pbr_params(m->reflectance, m->metallic, m->roughness, m->ior, m->transmission);
+#if CLPT_HAS_PBR_VOLUME
+  const int volume = m->thickness > (real)0 ? 1 : 0;
+#else
+  const int volume = 0;
+#endif
+  return pbr_params(m->reflectance, m->metallic, m->roughness, m->ior, m->transmission, volume);
 }
 #endif
 
@@ -184,6 +201,10 @@ CLPT_INLINE SurfaceMaterial sphere_material(__global const GpuSphere* spheres, i
     m.metallic = pick ? c.metallic : m.metallic;
     m.roughness = pick ? c.roughness : m.roughness;
     m.transmission = pick ? c.transmission : m.transmission;
+#endif
+#if CLPT_HAS_PBR_VOLUME
+    m.thickness = pick ? c.thickness : m.thickness;
+    m.attenuation = v3_select(pick, c.attenuation, m.attenuation);
 #endif
   }
   return m;
@@ -515,6 +536,16 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */
   const int sphere_index = surface.on_triangle ? -1 : index;
 
+#if CLPT_HAS_PBR_VOLUME
+  /* Beer's law: a segment that ends where it leaves a Pbr volume (it meets the surface from
+   * inside, along the outward normal) ran inside it for t. Applied before the surface's emission
+   * and everything after it. */
+  const bool leaves_volume = !missed && material.kind == CLPT_MATERIAL_PBR && material.thickness > (real)0 &&
+                             v3_dot(path->direction, normal) > (real)0;
+  const Vec3 absorbed = v3_scale(material.attenuation, -t);
+  const Vec3 transmittance = v3(exp(absorbed.x), exp(absorbed.y), exp(absorbed.z));
+  path->throughput = v3_select(leaves_volume, v3_mul(path->throughput, transmittance), path->throughput);
+#endif
   Vec3 emitted = v3_mul(path->throughput, material.emission);
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {

@@ -19,6 +19,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 struct Pbr {
   float base = 1, metallic = 1, roughness = 0.5f, ior = 1.5f, transmission = 0;
+  float volume = 0;  // 0 thin-walled, 1 a volume entered, 2 a volume left (probe_pbr)
 };
 
 struct ProbeOut {
@@ -29,7 +30,7 @@ struct ProbeOut {
 // the material is evaluated.
 std::vector<ProbeOut> probe(const Pbr& m, const std::vector<cl_float4>& pairs) {
   const cl_float4 params{{m.base, m.base, m.base, m.metallic}};
-  const cl_float4 shape{{m.roughness, m.ior, m.transmission, 0}};
+  const cl_float4 shape{{m.roughness, m.ior, m.transmission, m.volume}};
   const size_t n = pairs.size() / 2;
   return run_probe<ProbeOut>("probe_pbr", n, params, shape, upload(pairs));
 }
@@ -102,11 +103,12 @@ TEST(PbrBsdf, WhiteFurnaceMatchesTheAlbedoIntegratedOnTheHost) {
 TEST(PbrBsdf, AlbedoIsAtMostOne) {
   unsigned seed = 100;
   for (float metallic : {0.0f, 0.5f, 1.0f})
-    for (float transmission : {0.0f, 1.0f})
+    for (float transmission : {0.0f, 1.0f, 2.0f})  // 2: transmission 1 into a volume
       for (float roughness : {0.0f, 0.05f, 0.3f, 1.0f})
         for (double cos_o : {1.0, 0.5, 0.1, 0.02}) {
           Pbr m;
-          m.metallic = metallic, m.transmission = transmission, m.roughness = roughness;
+          m.metallic = metallic, m.transmission = std::min(transmission, 1.0f), m.roughness = roughness;
+          m.volume = transmission > 1 ? 1.0f : 0.0f;
           const auto s = sample(m, cos_o, 50000, seed++);
           const auto [mean, error] = mc_albedo(s);
           EXPECT_LE(mean, 1 + 4 * error + 1e-4) << "metallic " << metallic << ", transmission " << transmission
@@ -144,7 +146,7 @@ TEST(PbrBsdf, IsReciprocalAndNonNegative) {
 }
 
 // The density integrated over the sphere equals the share of samples the sampler keeps (a
-// reflection drawn below the surface is dropped), and a chi-square test of the directions against
+// reflection drawn below the surface, a refraction above it or totally reflected is dropped), and a chi-square test of the directions against
 // it passes: bins uniform in cos(theta) over [-1, 1] and in phi, each bin's expectation from the
 // density evaluated at 4 x 4 points in it.
 struct Chi2Result {
@@ -209,6 +211,9 @@ TEST(PbrBsdf, SampledDirectionsFollowTheirDensity) {
   const Case cases[] = {
       {{1, 0, 0.3f, 1.5f, 0}, 0.7},   {{0.8f, 0.5f, 0.6f, 1.5f, 0.5f}, 0.3}, {{1, 1, 0.25f, 1.5f, 0}, 0.9},
       {{0.5f, 0, 1.0f, 2.0f, 1}, 0.5}, {{0.9f, 0.2f, 0.4f, 1.3f, 0.8f}, 0.15},
+      // Rough refraction into a volume and out of it (total internal reflection drops samples).
+      {{0.9f, 0, 0.3f, 1.5f, 0.9f, 1}, 0.6}, {{0.9f, 0.1f, 0.5f, 1.5f, 1, 2}, 0.8},
+      {{0.9f, 0, 0.4f, 1.33f, 1, 2}, 0.3},
   };
   const double alpha = 1 - std::pow(1 - 0.01, 1.0 / std::size(cases));  // Sidak over the cases
   unsigned seed = 11;

@@ -227,6 +227,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.mirror = false;
   f.pbr = false;
   f.pbr_transmission = false;
+  f.pbr_volume = false;
   f.point_lights = f.spot_lights = f.directional_lights = false;
   for (const PunctualLight& l : scene.lights) {
     f.point_lights |= l.type == LightType::Point;
@@ -244,6 +245,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.mirror |= m.type == MaterialType::Mirror;
     f.pbr |= m.type == MaterialType::Pbr;
     f.pbr_transmission |= m.type == MaterialType::Pbr && m.transmission > 0;
+    f.pbr_volume |= m.type == MaterialType::Pbr && m.transmission > 0 && m.thickness > 0;
   };
   for (const Sphere& s : scene.spheres) uses(s.material);
   for (const TriangleMesh& m : scene.meshes) {
@@ -306,6 +308,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (!features.generic) {
     if (features.pbr) o << " -DCLPT_HAS_PBR=1";
     if (features.pbr) o << " -DCLPT_HAS_PBR_TRANSMISSION=" << (features.pbr_transmission ? 1 : 0);
+    if (features.pbr) o << " -DCLPT_HAS_PBR_VOLUME=" << (features.pbr_volume ? 1 : 0);
     if (features.point_lights) o << " -DCLPT_HAS_POINT_LIGHTS=1";
     if (features.spot_lights) o << " -DCLPT_HAS_SPOT_LIGHTS=1";
     if (features.directional_lights) o << " -DCLPT_HAS_DIRECTIONAL_LIGHTS=1";
@@ -383,6 +386,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << (features.generic ? "compiled (generic kernel)"
         : features.pbr_transmission ? "compiled (a pbr material has transmission > 0: the thin-walled lobe)"
                                     : "left out (no pbr material with transmission)")
+    << "\n";
+  o << "  Pbr volume: "
+    << (features.generic ? "compiled (generic kernel)"
+        : features.pbr_volume ? "compiled (a transmitting pbr material has a thickness: rough refraction, Beer's law)"
+                              : "left out (no transmitting pbr material with a thickness)")
     << "\n";
   const auto light_line = [&](const char* kind, bool on) {
     o << "  " << kind << " lights: "

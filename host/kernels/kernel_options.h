@@ -143,6 +143,7 @@ struct KernelFeatures {
   // light.cl, camera.cl), so the book's scenes build from exactly the options they had before.
   bool pbr = true;               // CLPT_HAS_PBR: a Pbr material (bsdf_pbr.cl)
   bool pbr_transmission = true;  // CLPT_HAS_PBR_TRANSMISSION: a Pbr material with transmission > 0
+  bool pbr_volume = true;        // CLPT_HAS_PBR_VOLUME: such a material with a thickness > 0
   bool point_lights = true;        // CLPT_HAS_POINT_LIGHTS
   bool spot_lights = true;         // CLPT_HAS_SPOT_LIGHTS
   bool directional_lights = true;  // CLPT_HAS_DIRECTIONAL_LIGHTS

@@ -105,8 +105,9 @@ std::vector<Sphere> pebbles() {
 }
 
 // A ball of the glTF material between the book's two, in front of them: rough half-metal, or a
-// thin-walled transmitting one that also emits (so it is a sphere light as well).
-Sphere pbr_ball(bool transmission) {
+// thin-walled transmitting one that also emits (so it is a sphere light as well), or a volume
+// (thickness > 0) that refracts and absorbs.
+Sphere pbr_ball(bool transmission, bool volume) {
   Sphere s;
   s.name = "variant_pbr_ball";
   s.center = {0, 0.6, 1.0};
@@ -116,7 +117,12 @@ Sphere pbr_ball(bool transmission) {
   s.material.metallic = transmission ? 0.0 : 0.5;
   s.material.roughness = transmission ? 0.2 : 0.4;
   s.material.transmission = transmission ? 0.7 : 0.0;
-  if (transmission) s.material.emission = {0.2, 0.1, 0.05};
+  if (transmission && !volume) s.material.emission = {0.2, 0.1, 0.05};
+  if (volume) {
+    s.material.thickness = 1.2;
+    s.material.attenuation_color = {0.9, 0.5, 0.3};
+    s.material.attenuation_distance = 1.0;
+  }
   return s;
 }
 
@@ -147,7 +153,7 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"phong", {"no-phong", "phong"}},
       {"glass", {"no-glass", "glass"}},
       {"geometry", {"spheres", "mesh"}},
-      {"pbr", {"no-pbr", "pbr", "pbr-transmission"}},
+      {"pbr", {"no-pbr", "pbr", "pbr-transmission", "pbr-volume"}},
       {"lights", {"no-punctual", "point", "spot", "directional"}},
       {"camera", {"perspective", "orthographic"}},
   };
@@ -174,7 +180,8 @@ bool KernelVariant::has_phong() const { return choice[kPhong] == 1; }
 bool KernelVariant::has_glass() const { return choice[kGlass] == 1; }
 bool KernelVariant::has_mesh() const { return choice[kGeometry] == 1; }
 bool KernelVariant::has_pbr() const { return choice[kPbr] != 0; }
-bool KernelVariant::has_pbr_transmission() const { return choice[kPbr] == 2; }
+bool KernelVariant::has_pbr_transmission() const { return choice[kPbr] >= 2; }
+bool KernelVariant::has_pbr_volume() const { return choice[kPbr] == 3; }
 int KernelVariant::punctual_light() const { return choice[kLights]; }
 bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
 
@@ -258,7 +265,7 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
     scene.meshes.push_back(mirror_octahedron());
     for (const Sphere& s : pebbles()) scene.spheres.push_back(s);
   }
-  if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission()));
+  if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
   if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
   if (variant.orthographic()) {
     scene.camera.projection = Projection::Orthographic;

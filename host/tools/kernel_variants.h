@@ -47,7 +47,8 @@ struct KernelVariant {
   // hierarchy of triangles and spheres (with the book's balls) instead of only the sphere loop.
   bool has_mesh() const;
   bool has_pbr() const;               // a ball of the glTF material
-  bool has_pbr_transmission() const;  // that ball transmits (thin-walled) and emits
+  bool has_pbr_transmission() const;  // that ball transmits (thin-walled, and emits; or a volume)
+  bool has_pbr_volume() const;        // that ball is a volume (thickness > 0): refraction, Beer's law
   int punctual_light() const;         // 0 none, 1 point, 2 spot, 3 directional
   bool orthographic() const;          // the camera's projection
 

@@ -162,14 +162,16 @@ __kernel void probe_udiv(__global const uint2* in, __global uint* out) {
 }
 
 /* The Pbr material (bsdf_pbr.cl). params: base colour xyz and metallic w; shape: roughness x,
- * ior y, transmission z. Each work-item i reads wo (local frame, +z the normal) and uniforms u
+ * ior y, transmission z, w: 0 thin-walled, 1 a volume entered (wo outside), 2 a volume left (wo
+ * inside: the outward normal is -z). Each work-item i reads wo (local frame, +z the normal) and uniforms u
  * from in[2 i], in[2 i + 1], and writes the sampled direction (w: its pdf), the weight (w: 0),
  * then f cos and the pdf evaluated at in[2 i + 1].xyz read as a direction (eval mode). */
 __kernel void probe_pbr(float4 params, float4 shape, __global const float4* in, __global float4* out) {
   const size_t i = get_global_id(0);
-  const PbrParams p = pbr_params(v3(params.x, params.y, params.z), params.w, shape.x, shape.y, shape.z);
+  const PbrParams p =
+      pbr_params(v3(params.x, params.y, params.z), params.w, shape.x, shape.y, shape.z, shape.w > 0.5f ? 1 : 0);
   const float4 wo4 = in[2 * i], u4 = in[2 * i + 1];
-  const Vec3 n = v3(0.0f, 0.0f, 1.0f);
+  const Vec3 n = v3(0.0f, 0.0f, shape.w > 1.5f ? -1.0f : 1.0f);
   const Vec3 d = v3(-wo4.x, -wo4.y, -wo4.z);
   Uniform4 u;
   u.u0 = u4.x;
