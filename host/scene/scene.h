@@ -45,7 +45,7 @@ struct Material {
   double thickness = 0;
   Vec3 attenuation_color{1, 1, 1};
   double attenuation_distance = 0;  // world units; 0: no attenuation (glTF's +infinity)
-  // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/gltf.md says how a
+  // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/materials.md says how a
   // single-sided surface seen from behind is rendered.
   bool double_sided = true;
 };
