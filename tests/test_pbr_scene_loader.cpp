@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scene/scene_loader.h"
+#include "scene/scene_transform.h"
 #include "scene/scene_writer.h"
 #include "util/error.h"
 
@@ -133,6 +134,21 @@ TEST(PbrSceneLoader, WriterWritesItBackAsTheSameScene) {
 TEST(PbrSceneLoader, AnExplicitEstimatorIsKept) {
   const std::string text = std::string("[render]\nestimator = \"book\"\n") + kScene;
   EXPECT_EQ(load_scene_string(text, "pbr.toml").settings.estimator, "book");
+}
+
+// Scaling a scene keeps its image: lights move and point lights brighten by the square of the
+// factor, ranges, volumes and an orthographic camera's height scale with it.
+TEST(PbrSceneLoader, ScaleSceneCarriesLightsAndTheOrthographicCamera) {
+  Scene a = load_scene_string(kScene, "pbr.toml");
+  a.spheres[2].material.thickness = 0.5;
+  const Scene b = scale_scene(translate_scene(a, {1, 2, 3}), 2);
+  EXPECT_EQ(b.lights[0].position, (Vec3{2, 12, 6}));
+  EXPECT_DOUBLE_EQ(b.lights[0].intensity[0], 4 * a.lights[0].intensity[0]);
+  EXPECT_EQ(b.lights[0].range, 20);
+  EXPECT_EQ(b.lights[2].intensity, a.lights[2].intensity);  // directional
+  EXPECT_EQ(b.camera.ortho_height, 7);
+  EXPECT_EQ(b.spheres[2].material.thickness, 1);
+  EXPECT_DOUBLE_EQ(scale_emission(a, 3).lights[1].intensity[0], 6);
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// Similarity transforms of a whole scene (scene_transform.h): spheres, meshes and the camera.
+// Similarity transforms of a whole scene (scene_transform.h): spheres, meshes, punctual lights and
+// the camera.
 #include "scene/scene_transform.h"
 
 #include <cmath>
@@ -33,8 +34,22 @@ Scene scale_scene(const Scene& scene, double factor) {
     m.placement.scale = scale(m.placement.scale, factor);
     m.placement.translate = scale(m.placement.translate, factor);
   }
+  // A point or spot light's irradiance I / d^2 at the scaled distances is kept by I factor^2 (an
+  // emitter's radiance needs no change); a directional light's needs none.
+  for (PunctualLight& l : out.lights) {
+    l.position = scale(l.position, factor);
+    l.range *= factor;
+    if (l.type != LightType::Directional) l.intensity = scale(l.intensity, factor * factor);
+  }
+  const auto scale_volume = [factor](Material& m) {
+    m.thickness *= factor;
+    m.attenuation_distance *= factor;
+  };
+  for (Sphere& s : out.spheres) scale_volume(s.material);
+  for (TriangleMesh& m : out.meshes) scale_volume(m.material);
   out.camera.position = scale(out.camera.position, factor);
   out.camera.look_at = scale(out.camera.look_at, factor);
+  out.camera.ortho_height *= factor;
   return out;
 }
 
@@ -47,6 +62,7 @@ Scene translate_scene(const Scene& scene, const Vec3& offset) {
     for (Vec3& p : m.positions) p = add(p, offset);
     m.placement.translate = add(m.placement.translate, offset);
   }
+  for (PunctualLight& l : out.lights) l.position = add(l.position, offset);
   out.camera.position = add(out.camera.position, offset);
   out.camera.look_at = add(out.camera.look_at, offset);
   return out;
@@ -59,6 +75,11 @@ Scene scale_emission(const Scene& scene, double factor) {
     if (s.material.type == MaterialType::Emitter) s.material.emission = scale(s.material.emission, factor);
   for (TriangleMesh& m : out.meshes)
     if (m.material.type == MaterialType::Emitter) m.material.emission = scale(m.material.emission, factor);
+  for (Sphere& s : out.spheres)
+    if (s.material.type == MaterialType::Pbr) s.material.emission = scale(s.material.emission, factor);
+  for (TriangleMesh& m : out.meshes)
+    if (m.material.type == MaterialType::Pbr) m.material.emission = scale(m.material.emission, factor);
+  for (PunctualLight& l : out.lights) l.intensity = scale(l.intensity, factor);
   return out;
 }
 
