@@ -34,8 +34,23 @@
 #include "maths.cl"
 #include "rng.cl"
 
+/* The features of the glTF material (kernel_options.cpp): CLPT_HAS_PBR, CLPT_HAS_PBR_TRANSMISSION
+ * and CLPT_HAS_PBR_VOLUME are named in a specialised kernel's options only when its scene has a
+ * Pbr material, so that the kernels of scenes without one build from exactly the options they
+ * had before: absent, they are 0 in a specialised kernel (CLPT_ESTIMATOR fixed) and 1 in the
+ * generic one. */
+#ifndef CLPT_HAS_PBR
+#ifdef CLPT_ESTIMATOR
+#define CLPT_HAS_PBR 0
+#else
+#define CLPT_HAS_PBR 1
+#endif
+#endif
+#ifndef CLPT_HAS_PBR_TRANSMISSION
+#define CLPT_HAS_PBR_TRANSMISSION CLPT_HAS_PBR
+#endif
 #ifndef CLPT_HAS_PBR_VOLUME
-#define CLPT_HAS_PBR_VOLUME 1
+#define CLPT_HAS_PBR_VOLUME CLPT_HAS_PBR_TRANSMISSION
 #endif
 
 /* pbrt-v4's "effectively smooth" bound: a lobe narrower than about 1e-3 radians, whose D

@@ -59,23 +59,6 @@
 #ifndef CLPT_HAS_TRIANGLES
 #define CLPT_HAS_TRIANGLES 1
 #endif
-/* The features added with the glTF material (CLPT_HAS_PBR, CLPT_HAS_PBR_TRANSMISSION) are named in
- * a specialised kernel's options only when it has them (kernel_options.cpp), so that the kernels
- * of scenes without them build from exactly the options they had before: absent, they are 0 in
- * a specialised kernel (CLPT_ESTIMATOR fixed) and 1 in the generic one. */
-#ifndef CLPT_HAS_PBR
-#ifdef CLPT_ESTIMATOR
-#define CLPT_HAS_PBR 0
-#else
-#define CLPT_HAS_PBR 1
-#endif
-#endif
-#ifndef CLPT_HAS_PBR_TRANSMISSION
-#define CLPT_HAS_PBR_TRANSMISSION CLPT_HAS_PBR
-#endif
-#ifndef CLPT_HAS_PBR_VOLUME
-#define CLPT_HAS_PBR_VOLUME CLPT_HAS_PBR_TRANSMISSION
-#endif
 #ifdef CLPT_ESTIMATOR
 #define CLPT_NEE_COMPILED (CLPT_ESTIMATOR == CLPT_ESTIMATOR_NEE)
 #define CLPT_NEE_ON(params) (CLPT_ESTIMATOR == CLPT_ESTIMATOR_NEE)
