@@ -1,8 +1,11 @@
-/* camera.cl: the book's pinhole camera and the sub-pixel samplers.
+/* camera.cl: the book's pinhole camera, the orthographic camera and the sub-pixel samplers.
  *
  * Reads GpuRenderParams (camera, image size, sampler; the random numbers come from sampler.cl). Produces a unit direction from the
  * pinhole, which sits at the origin of the camera-relative device frame. Image row 0 is the
- * top of the picture; the sensor's "up" axis counts rows from the bottom, as in the book. */
+ * top of the picture; the sensor's "up" axis counts rows from the bottom, as in the book.
+ * CLPT_HAS_ORTHOGRAPHIC (kernel_options.cpp; named only by a specialised kernel whose camera is
+ * orthographic, 1 in the generic kernel, which reads GpuCamera.projection): parallel rays from
+ * the sensor's points, which then lies around the camera-relative origin. */
 #ifndef CLPT_CAMERA_CL
 #define CLPT_CAMERA_CL
 
@@ -10,6 +13,14 @@
 #include "maths.cl"
 #include "rng.cl"
 #include "sampler.cl"
+
+#ifndef CLPT_HAS_ORTHOGRAPHIC
+#ifdef CLPT_ESTIMATOR
+#define CLPT_HAS_ORTHOGRAPHIC 0
+#else
+#define CLPT_HAS_ORTHOGRAPHIC 1
+#endif
+#endif
 
 /* Position inside the pixel, in [0,1)^2, of sample `sample` of pixel `pixel`.
  * Grid: the centres of 4x4 strata, in order (the book's sampling).
@@ -52,6 +63,25 @@ CLPT_INLINE Vec3 camera_ray_direction(const GpuCamera* camera, uint width, uint 
   on_sensor = v3_add_scaled(on_sensor, v3_load_apart(camera->sensor_right), fx - 0.5f);
   on_sensor = v3_add_scaled(on_sensor, v3_load_apart(camera->sensor_up), fy - 0.5f);
   return v3_normalize(on_sensor);
+}
+
+/* The camera ray through image position (col + sx, row + sy): its unit direction, and in *origin
+ * where it starts (the pinhole at the origin, or the orthographic sensor's point). */
+CLPT_INLINE Vec3 camera_ray(const GpuCamera* camera, uint width, uint height, uint col, uint row, Float2 subpixel,
+                            Vec3* origin) {
+#if CLPT_HAS_ORTHOGRAPHIC
+  const real fx = ((real)col + subpixel.x) / (real)width;
+  const real fy = ((real)(height - 1u - row) + subpixel.y) / (real)height;
+  const bool ortho = camera->projection == CLPT_PROJECTION_ORTHOGRAPHIC;
+  const Vec3 on_sensor = v3_add_scaled(v3_scale(v3_load_apart(camera->sensor_right), fx - 0.5f),
+                                       v3_load_apart(camera->sensor_up), fy - 0.5f);
+  *origin = v3_select(ortho, on_sensor, v3_splat((real)0));
+  return v3_select(ortho, v3_load_apart(camera->sensor_center),
+                   camera_ray_direction(camera, width, height, col, row, subpixel));
+#else
+  *origin = v3_splat((real)0);
+  return camera_ray_direction(camera, width, height, col, row, subpixel);
+#endif
 }
 
 #endif

@@ -27,6 +27,28 @@
 #ifndef CLPT_HAS_TRIANGLE_LIGHTS
 #define CLPT_HAS_TRIANGLE_LIGHTS 1
 #endif
+/* Punctual lights by kind: named in a specialised kernel's options only when its scene has them
+ * (kernel_options.cpp), so absent they are 0 there and 1 in the generic kernel. */
+#ifdef CLPT_ESTIMATOR
+#define CLPT_PUNCTUAL_DEFAULT 0
+#else
+#define CLPT_PUNCTUAL_DEFAULT 1
+#endif
+#ifndef CLPT_HAS_POINT_LIGHTS
+#define CLPT_HAS_POINT_LIGHTS CLPT_PUNCTUAL_DEFAULT
+#endif
+#ifndef CLPT_HAS_SPOT_LIGHTS
+#define CLPT_HAS_SPOT_LIGHTS CLPT_PUNCTUAL_DEFAULT
+#endif
+#ifndef CLPT_HAS_DIRECTIONAL_LIGHTS
+#define CLPT_HAS_DIRECTIONAL_LIGHTS CLPT_PUNCTUAL_DEFAULT
+#endif
+#define CLPT_HAS_PUNCTUAL_LIGHTS (CLPT_HAS_POINT_LIGHTS || CLPT_HAS_SPOT_LIGHTS || CLPT_HAS_DIRECTIONAL_LIGHTS)
+/* Lights picked by power from the alias table (else uniformly over the sphere caps). */
+#define CLPT_LIGHT_PICK_BY_POWER (CLPT_HAS_TRIANGLE_LIGHTS || CLPT_HAS_PUNCTUAL_LIGHTS)
+/* How far a directional light's shadow ray looks, world units: below CLPT_NO_HIT (maths.cl), and
+ * small enough that its square stays a finite float (next_event forms the ray's length). */
+#define CLPT_DIRECTIONAL_DISTANCE ((real)1e15f)
 #if CLPT_HAS_TRIANGLE_LIGHTS && defined(CLPT_HAS_TRIANGLES) && !CLPT_HAS_TRIANGLES
 #error "triangle lights need triangles (kernel_options.cpp)"
 #endif
@@ -40,15 +62,17 @@ typedef struct LightSample {
   real distance;  /* to the sampled point, world units */
   real pdf;       /* solid-angle density of this direction, light pick included; 0: unusable (the
                      point faces away from the shading point, or the density overflowed) */
-  int sphere;     /* the emitter's index in the sphere buffer; -1 for a triangle light */
-#if CLPT_HAS_TRIANGLE_LIGHTS
-  int triangle;   /* the emitting triangle's index in the triangle buffer; -1 for a sphere light */
+  int sphere;     /* the emitter's index in the sphere buffer; -1 for a triangle or punctual light */
+#if CLPT_LIGHT_PICK_BY_POWER
+  int triangle;   /* the emitting triangle's index in the triangle buffer; -1 for the others */
+  /* Punctual lights (delta = 1): pdf is the pick probability alone, and emission the radiance
+   * the light brings along direction: intensity x falloff / distance^2, or the irradiance. */
+  int delta;
   Vec3 emission;  /* the light's emitted radiance per channel */
   /* Where a shadow ray to a triangle light ends: the sampled point moved off the triangle's plane
    * towards the shading point by its rounding bound (triangle_offset_origin), so that no rounding
    * puts the end behind the plane (the light itself is also skipped by index, bvh.cl). */
   Vec3 target;
-  CLPT_ABI_PAD(int, 1)
 #endif
 } LightSample;
 
@@ -99,7 +123,42 @@ CLPT_INLINE LightSample sphere_cap_sample(__global const GpuLight* light, __glob
   return s;
 }
 
-#if !CLPT_HAS_TRIANGLE_LIGHTS
+#if CLPT_HAS_PUNCTUAL_LIGHTS
+/* Punctual light `light` seen from x (KHR_lights_punctual): direction to it, distance (a
+ * directional light's CLPT_DIRECTIONAL_DISTANCE), and in *emission what it brings: point and
+ * spot I x spot ramp x range window / d^2, directional E. */
+CLPT_INLINE Vec3 punctual_light_at(__global const GpuLight* light, Vec3 x, real* distance, Vec3* emission) {
+  const Vec3 axis = v3_load_global(light->cap_axis);
+  const Vec3 to_light = v3_sub(v3_load_global(light->position), x);
+  const real d2 = v3_dot(to_light, to_light);
+  const real d = clpt_sqrt(d2);
+  Vec3 direction = v3_scale(to_light, d > (real)0 ? (real)1 / d : (real)0);
+  /* The range window clamp(1 - (d / range)^4, 0, 1), the extension's recommended one. */
+  const real range = light->range;
+  const real q = range > (real)0 ? d2 / (range * range) : (real)0;
+  const real window0 = (real)1 - q * q;
+  const real window = window0 > (real)0 ? window0 : (real)0;
+  real falloff = d2 > (real)0 ? window / d2 : (real)0;
+#if CLPT_HAS_SPOT_LIGHTS
+  const real ramp0 = -v3_dot(axis, direction) * (real)light->spot_scale + (real)light->spot_offset;
+  const real ramp = ramp0 < (real)0 ? (real)0 : (ramp0 > (real)1 ? (real)1 : ramp0);
+  falloff *= ramp * ramp;
+#endif
+  *distance = d;
+#if CLPT_HAS_DIRECTIONAL_LIGHTS
+  const bool directional = light->punctual == CLPT_LIGHT_DIRECTIONAL;
+  direction = v3_select(directional, v3_neg(axis), direction);
+  *distance = directional ? CLPT_DIRECTIONAL_DISTANCE : d;
+  falloff = directional ? (real)1 : falloff;
+#else
+  (void)axis;
+#endif
+  *emission = v3_scale(v3_load_global(light->intensity), is_finite_real(falloff) ? falloff : (real)0);
+  return direction;
+}
+#endif
+
+#if !CLPT_LIGHT_PICK_BY_POWER
 /* Sphere lights only, picked uniformly. */
 CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count, Vec3 x, Uniform4 u) {
 #ifdef CLPT_LIGHT_COUNT
@@ -115,24 +174,27 @@ CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count
   return s;
 }
 #else
-/* Sphere and triangle lights, picked by power: entry i = floor(u2 n) is kept when the fraction of
- * u2 n is below its alias threshold, else its alias is taken (Walker's alias method). Both kinds'
- * points are formed and the light's kind selects one (selects, not branches, for PoCL). */
+/* Sphere, triangle and punctual lights, picked by power: entry i = floor(u2 n) is kept when the
+ * fraction of u2 n is below its alias threshold, else its alias is taken (Walker's alias method).
+ * Every compiled kind's point is formed and the light's kind selects one (selects, not branches,
+ * for PoCL). */
 CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count, Vec3 x, Uniform4 u) {
   const float scaled = u.u2 * (float)light_count;
   const uint slot = min((uint)scaled, light_count - 1u);
   const float fraction = scaled - (float)slot;
   const uint index = fraction < scene->lights[slot].alias_threshold ? slot : scene->lights[slot].alias;
   __global const GpuLight* light = &scene->lights[index];
-  const bool is_triangle = light->triangle != CLPT_LIGHT_SPHERE;
 
   real cos_light;
   bool facing;
   LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing);
   s.triangle = -1;
+  s.delta = 0;
   s.emission = v3_load_global(scene->spheres[light->sphere].material.emission);
   s.target = v3_add_scaled(x, s.direction, s.distance);
 
+#if CLPT_HAS_TRIANGLE_LIGHTS
+  const bool is_triangle = light->triangle != CLPT_LIGHT_SPHERE;
   /* Uniform by area: b0 = 1 - sqrt(u0), b1 = u1 sqrt(u0), b2 = the rest. Seen from either side. */
   const uint tri = is_triangle ? light->triangle : 0u;
   const real root = clpt_sqrt((real)u.u0);
@@ -149,11 +211,28 @@ CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count
   s.triangle = is_triangle ? (int)tri : -1;
   s.emission = v3_select(is_triangle, v3_load_global(scene->triangle_shading[tri].material.emission), s.emission);
   s.target = v3_select(is_triangle, triangle_offset_origin(&point, v3_scale(direction, (real)-1)), s.target);
+#endif
 
   s.pdf = light_pick_pdf(s.distance, cos_light, light->cap_area, (real)light->pick_probability);
   s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
+#if CLPT_HAS_PUNCTUAL_LIGHTS
+  const bool is_punctual = light->punctual != 0u;
+  real punctual_distance;
+  Vec3 punctual_emission;
+  const Vec3 punctual_direction = punctual_light_at(light, x, &punctual_distance, &punctual_emission);
+  s.direction = v3_select(is_punctual, punctual_direction, s.direction);
+  s.distance = is_punctual ? punctual_distance : s.distance;
+  s.sphere = is_punctual ? -1 : s.sphere;
+  s.delta = is_punctual ? 1 : 0;
+  s.emission = v3_select(is_punctual, punctual_emission, s.emission);
+  s.target = v3_select(is_punctual, v3_add_scaled(x, punctual_direction, punctual_distance), s.target);
+  s.pdf = is_punctual ? (real)light->pick_probability : s.pdf;
+#endif
   return s;
 }
+#endif
+
+#if CLPT_HAS_TRIANGLE_LIGHTS
 
 /* Density with which light_sample would have chosen the direction d that hit emitting triangle
  * `shading` (geometric normal `geometric`) at distance t: its pick probability / area, converted
@@ -191,7 +270,7 @@ CLPT_INLINE real light_pdf_of_hit(__global const GpuLight* lights, uint light_co
     const bool in_cap = ((int)light->sphere == sphere) & (height <= (real)light->one_minus_cos_cap * (real)1.001f);
     /* The density is formed for every light and then chosen, not formed under the condition:
      * there its reads would be masked loads, which the vectoriser costs as gathers (maths.cl). */
-#if CLPT_HAS_TRIANGLE_LIGHTS
+#if CLPT_LIGHT_PICK_BY_POWER
     (void)count;
     const real candidate = light_pick_pdf(t, v3_dot(normal, d), light->cap_area, (real)light->pick_probability);
 #else

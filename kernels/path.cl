@@ -7,11 +7,13 @@
  * Estimators (CLPT_ESTIMATOR_*, types.h):
  *  - book: no next-event estimation; a path gains light only when it hits an emitter, which
  *    ends it; a miss ends it (black background).
- *  - nee: at every Lambertian or Phong vertex that may still scatter, one shadow ray towards a
+ *  - nee: at every Lambertian, Phong or Pbr vertex that may still scatter, one shadow ray towards a
  *    point sampled on a light (light.cl); its contribution and that of a BSDF-sampled ray hitting
  *    the light are weighted by the power heuristic (Veach's MIS, beta = 2), so the two strategies
  *    together count every light path once. Glass and the mirror are specular: no shadow ray
- *    there, and a light hit after them (or by the camera ray) has weight 1. Emitting triangles
+ *    there, and a light hit after them (or by the camera ray) has weight 1; so are a Pbr surface's
+ *    delta lobes (roughness below 0.0316, bsdf_pbr.cl). Punctual lights are reached by the
+ *    shadow ray alone (weight 1, no BSDF-sampled counterpart). Emitting triangles
  *    are lights like the spheres' caps (CLPT_HAS_TRIANGLE_LIGHTS, light.cl); without that
  *    feature the scene has none.
  * Segment `bounce` = 0 is the camera ray; at most max_bounces scattering events follow, and
@@ -22,7 +24,9 @@
  * and divides the survivors by q: the expectation is unchanged.
  *
  * Specialisation (decided on the host in kernel_options.cpp, one place): CLPT_HAS_PHONG,
- * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
+ * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_PBR (bsdf_pbr.cl), CLPT_HAS_PBR_TRANSMISSION and
+ * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
+ * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
  * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
@@ -37,6 +41,7 @@
 #include "intersect.cl"
 #include "bvh.cl"
 #include "bsdf.cl"
+#include "bsdf_pbr.cl"
 #include "light.cl"
 
 #ifndef CLPT_HAS_PHONG
@@ -79,8 +84,7 @@ CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint
   const uint col = pixel - row * params->width;
   const Float2 subpixel = camera_subpixel(rng_key_of(params), params->sampler, pixel, sample);
   PathState path;
-  path.origin = v3_splat(0.0f);
-  path.direction = camera_ray_direction(&params->camera, params->width, params->height, col, row, subpixel);
+  path.direction = camera_ray(&params->camera, params->width, params->height, col, row, subpixel, &path.origin);
   path.throughput = v3_splat(1.0f);
   path.radiance = v3_splat(0.0f);
   path.pixel = pixel;
@@ -116,6 +120,15 @@ typedef struct SurfaceMaterial {
   Vec3 emission;
   real phong_exponent;
   real ior;
+#if CLPT_HAS_PBR
+  real metallic;
+  real roughness;
+  real transmission;
+#endif
+#if CLPT_HAS_PBR_VOLUME
+  real thickness;    /* > 0: the transmission refracts into a closed volume */
+  Vec3 attenuation;  /* Beer's law coefficients inside it, world units^-1 */
+#endif
   CLPT_ABI_PAD(uint, 1)
 } SurfaceMaterial;
 
@@ -126,8 +139,32 @@ CLPT_INLINE SurfaceMaterial material_of(__global const GpuMaterial* m) {
   s.emission = v3_load_sphere_field(m->emission);
   s.phong_exponent = m->phong_exponent;
   s.ior = m->ior;
+#if CLPT_HAS_PBR
+  s.metallic = m->metallic;
+  s.roughness = m->roughness;
+#if CLPT_HAS_PBR_TRANSMISSION
+  s.transmission = m->transmission;
+#else
+  s.transmission = (real)0;
+#endif
+#endif
+#if CLPT_HAS_PBR_VOLUME
+  s.thickness = m->thickness;
+  s.attenuation = v3_load_sphere_field(m->attenuation);
+#endif
   return s;
 }
+
+#if CLPT_HAS_PBR
+CLPT_INLINE PbrParams pbr_params_of(const SurfaceMaterial* m) {
+#if CLPT_HAS_PBR_VOLUME
+  const int volume = m->thickness > (real)0 ? 1 : 0;
+#else
+  const int volume = 0;
+#endif
+  return pbr_params(m->reflectance, m->metallic, m->roughness, m->ior, m->transmission, volume);
+}
+#endif
 
 /* Sphere `index`'s material: by selects over the loop's spheres where CLPT_MATERIAL_BY_SELECT
  * (maths.cl) says so, else by one indexed read of each field. The same values either way. */
@@ -143,6 +180,15 @@ CLPT_INLINE SurfaceMaterial sphere_material(__global const GpuSphere* spheres, i
     m.emission = v3_select(pick, c.emission, m.emission);
     m.phong_exponent = pick ? c.phong_exponent : m.phong_exponent;
     m.ior = pick ? c.ior : m.ior;
+#if CLPT_HAS_PBR
+    m.metallic = pick ? c.metallic : m.metallic;
+    m.roughness = pick ? c.roughness : m.roughness;
+    m.transmission = pick ? c.transmission : m.transmission;
+#endif
+#if CLPT_HAS_PBR_VOLUME
+    m.thickness = pick ? c.thickness : m.thickness;
+    m.attenuation = v3_select(pick, c.attenuation, m.attenuation);
+#endif
   }
   return m;
 #else
@@ -151,10 +197,13 @@ CLPT_INLINE SurfaceMaterial sphere_material(__global const GpuSphere* spheres, i
 }
 
 /* Next direction and throughput weight at a non-emitting surface. Materials left out of the
- * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. */
-CLPT_INLINE Vec3 material_sample(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight) {
+ * build (CLPT_HAS_*) fall back to Lambertian, which the host never lets happen. *pbr_pdf: the
+ * Pbr sampler's density of the direction (0 for its delta lobes), for the next hit's MIS weight;
+ * left alone for the other kinds, whose density material_eval gives. */
+CLPT_INLINE Vec3 material_sample(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Uniform4 u, Vec3* weight,
+                                 real* pbr_pdf) {
   const Vec3 rho = m->reflectance;
-#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR || CLPT_HAS_PBR /* read only where there is a choice */
   const uint kind = m->kind;
 #endif
   Vec3 next = bsdf_lambertian_sample(d, normal, rho, u, weight);
@@ -176,6 +225,15 @@ CLPT_INLINE Vec3 material_sample(const SurfaceMaterial* m, Vec3 d, Vec3 normal, 
   next = v3_select(kind == CLPT_MATERIAL_MIRROR, mirror, next);
   *weight = v3_select(kind == CLPT_MATERIAL_MIRROR, mirror_weight, *weight);
 #endif
+#if CLPT_HAS_PBR
+  Vec3 pbr_weight;
+  const PbrParams pbr = pbr_params_of(m);
+  const Vec3 pbr_next = bsdf_pbr_sample(d, normal, &pbr, u, &pbr_weight, pbr_pdf);
+  next = v3_select(kind == CLPT_MATERIAL_PBR, pbr_next, next);
+  *weight = v3_select(kind == CLPT_MATERIAL_PBR, pbr_weight, *weight);
+#else
+  (void)pbr_pdf;
+#endif
   return next;
 }
 
@@ -183,7 +241,7 @@ CLPT_INLINE Vec3 material_sample(const SurfaceMaterial* m, Vec3 d, Vec3 normal, 
  * estimation). Glass and the mirror are specular: 0 and 0. */
 CLPT_INLINE Vec3 material_eval(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Vec3 wi, real* pdf) {
   const Vec3 rho = m->reflectance;
-#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR /* read only where there is a choice */
+#if CLPT_HAS_PHONG || CLPT_HAS_GLASS || CLPT_HAS_MIRROR || CLPT_HAS_PBR /* read only where there is a choice */
   const uint kind = m->kind;
 #endif
   Vec3 f_cos = bsdf_lambertian_eval(d, normal, rho, wi, pdf);
@@ -202,6 +260,13 @@ CLPT_INLINE Vec3 material_eval(const SurfaceMaterial* m, Vec3 d, Vec3 normal, Ve
   const bool specular = ((1u << kind) & specular_kinds) != 0u;
   f_cos = v3_select(specular, v3_splat((real)0), f_cos);
   *pdf = specular ? (real)0 : *pdf;
+#endif
+#if CLPT_HAS_PBR
+  real pbr_pdf;
+  const PbrParams pbr = pbr_params_of(m);
+  const Vec3 pbr_f_cos = bsdf_pbr_eval(d, normal, &pbr, wi, &pbr_pdf);
+  f_cos = v3_select(kind == CLPT_MATERIAL_PBR, pbr_f_cos, f_cos);
+  *pdf = kind == CLPT_MATERIAL_PBR ? pbr_pdf : *pdf;
 #endif
   return f_cos;
 }
@@ -317,17 +382,18 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   const Vec3 f_cos = material_eval(m, path->direction, surface->normal, ls.direction, &bsdf_pdf);
   const int skip = index >= 0 && v3_dot(ls.direction, surface->normal) > (real)0 ? index : -1;
   const Vec3 origin = leaving_origin(surface, ls.direction);
-#if CLPT_HAS_TRIANGLE_LIGHTS
+#if CLPT_LIGHT_PICK_BY_POWER
   /* A triangle light's shadow ray runs from the offset origin to the sample's offset target and
    * skips the light's own triangle (bvh.cl): no epsilon of the scene's size at either end. A
-   * sphere light's ends 0.1% short of its point, as below. */
-  const bool to_triangle = ls.triangle >= 0;
-  const Vec3 to_target = v3_sub(ls.target, origin);
-  const real target_distance = clpt_sqrt(v3_dot(to_target, to_target));
+   * punctual light's runs to the light (a directional one's CLPT_DIRECTIONAL_DISTANCE). A sphere
+   * light's ends 0.1% short of its point, as below. */
+  const bool to_target = ls.triangle >= 0 || ls.delta != 0;
+  const Vec3 to_target_v = v3_sub(ls.target, origin);
+  const real target_distance = clpt_sqrt(v3_dot(to_target_v, to_target_v));
   const Vec3 shadow_direction =
-      v3_select(to_triangle, v3_scale(to_target, (real)1 / (target_distance > (real)0 ? target_distance : (real)1)),
+      v3_select(to_target, v3_scale(to_target_v, (real)1 / (target_distance > (real)0 ? target_distance : (real)1)),
                 ls.direction);
-  const real near_light = to_triangle ? target_distance : ls.distance * (real)0.999f;
+  const real near_light = to_target ? target_distance : ls.distance * (real)0.999f;
   const int skip_triangle = ls.triangle;
 #else
   const Vec3 shadow_direction = ls.direction;
@@ -346,9 +412,9 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
    * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
    * find the emitter first (when the lights are in the loop), the hierarchy nothing before it;
    * for a triangle light, the loop's spheres nothing before its target. */
-#if CLPT_HAS_TRIANGLE_LIGHTS
+#if CLPT_LIGHT_PICK_BY_POWER
   const bool loop_clear = params->sphere_count == 0u ||
-                          ((to_triangle || shadow.sphere == ls.sphere) && shadow.t >= near_light);
+                          ((to_target || shadow.sphere == ls.sphere) && shadow.t >= near_light);
   const Vec3 emission = ls.emission;
 #else
   const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
@@ -358,7 +424,13 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
    * (maths.cl, v3_is_zero). */
   const bool visible = ((ls.pdf > (real)0) & (int)loop_clear & !v3_is_zero(f_cos) &
                         (int)leaves_consistently(surface, ls.direction)) != 0;
-  const real weight = visible ? mis_power(ls.pdf, bsdf_pdf) / ls.pdf : (real)0;
+#if CLPT_HAS_PUNCTUAL_LIGHTS
+  /* A delta light has no BSDF-sampled counterpart: weight 1, divided by its pick probability. */
+  const real mis = ls.delta != 0 ? (real)1 : mis_power(ls.pdf, bsdf_pdf);
+#else
+  const real mis = mis_power(ls.pdf, bsdf_pdf);
+#endif
+  const real weight = visible ? mis / ls.pdf : (real)0;
   return v3_scale(v3_mul(f_cos, emission), weight);
 }
 
@@ -447,6 +519,16 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */
   const int sphere_index = surface.on_triangle ? -1 : index;
 
+#if CLPT_HAS_PBR_VOLUME
+  /* Beer's law: a segment that ends where it leaves a Pbr volume (it meets the surface from
+   * inside, along the outward normal) ran inside it for t. Applied before the surface's emission
+   * and everything after it. */
+  const bool leaves_volume = !missed && material.kind == CLPT_MATERIAL_PBR && material.thickness > (real)0 &&
+                             v3_dot(path->direction, normal) > (real)0;
+  const Vec3 absorbed = v3_scale(material.attenuation, -t);
+  const Vec3 transmittance = v3(exp(absorbed.x), exp(absorbed.y), exp(absorbed.z));
+  path->throughput = v3_select(leaves_volume, v3_mul(path->throughput, transmittance), path->throughput);
+#endif
   Vec3 emitted = v3_mul(path->throughput, material.emission);
 #if CLPT_NEE_COMPILED
   if (CLPT_NEE_ON(params)) {
@@ -466,11 +548,18 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
     emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? hit_weight : (real)1);
   }
 #endif
-  path->radiance = v3_select(emitter, v3_add(path->radiance, emitted), path->radiance);
+#if CLPT_HAS_PBR
+  /* A Pbr surface emits (its emission may be 0) and scatters. */
+  const bool emits = emitter || (!missed && material.kind == CLPT_MATERIAL_PBR);
+#else
+  const bool emits = emitter;
+#endif
+  path->radiance = v3_select(emits, v3_add(path->radiance, emitted), path->radiance);
 
   const Uniform4 u = scatter_uniforms_of(params, draw, path->bounce);
   Vec3 weight;
-  const Vec3 next = material_sample(&material, path->direction, normal, u, &weight);
+  real pbr_pdf = (real)0;
+  const Vec3 next = material_sample(&material, path->direction, normal, u, &weight, &pbr_pdf);
   weight = v3_select(leaves_consistently(&surface, next), weight, v3_splat((real)0));
 
 #if CLPT_NEE_COMPILED
@@ -481,6 +570,11 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
     path->segments += scatters ? shadow_segments : 0u;
     real next_pdf;
     (void)material_eval(&material, path->direction, normal, next, &next_pdf);
+#if CLPT_HAS_PBR
+    /* The sampler's own density: 0 after a delta lobe, whose direction material_eval cannot tell
+     * from one its diffuse lobe might have drawn. */
+    next_pdf = material.kind == CLPT_MATERIAL_PBR ? pbr_pdf : next_pdf;
+#endif
     path->bsdf_pdf = next_pdf;
   }
 #endif

@@ -23,14 +23,23 @@ typedef uint32_t clpt_u32;
 #define CLPT_MATERIAL_GLASS 2u
 #define CLPT_MATERIAL_EMITTER 3u
 #define CLPT_MATERIAL_MIRROR 4u /* perfect specular reflector, reflectance rho */
+#define CLPT_MATERIAL_PBR 5u    /* glTF metallic-roughness (bsdf_pbr.cl, docs/materials.md) */
 
-/* One material, as a sphere embeds it and a triangle's shading record does: 36 bytes. */
+/* One material, as a sphere embeds it and a triangle's shading record does: 64 bytes. */
 typedef struct GpuMaterial {
   clpt_u32 kind;           /* CLPT_MATERIAL_* */
-  float reflectance[3];    /* albedo rho per channel, [0, 1] */
+  float reflectance[3];    /* albedo rho per channel, [0, 1]; Pbr: the base colour */
   float phong_exponent;    /* Phong lobe exponent n (Phong only) */
-  float emission[3];       /* emitted radiance per channel (emitters only) */
-  float ior;               /* index of refraction inside (glass only); outside is 1 */
+  float emission[3];       /* emitted radiance per channel (emitters; Pbr, where it may be 0) */
+  float ior;               /* index of refraction inside (glass, Pbr); outside is 1 */
+  /* Pbr only (0 for every other kind): */
+  float metallic;          /* [0, 1] */
+  float roughness;         /* [0, 1]; the GGX alpha is roughness^2 */
+  float transmission;      /* [0, 1], KHR_materials_transmission */
+  float thickness;         /* > 0: a closed volume the transmission refracts into
+                              (KHR_materials_volume); 0: thin-walled. World units. */
+  float attenuation[3];    /* Beer's law inside the volume: absorption coefficient per channel,
+                              world units^-1 (-ln(attenuation_color) / attenuation_distance); 0: none */
 } GpuMaterial;
 
 /* Sample indices of the second half-film start at 2^CLPT_SAMPLE_STREAM_BIT (render/film.h,
@@ -44,7 +53,7 @@ typedef struct GpuMaterial {
 #define CLPT_SAMPLER_SOBOL 2u  /* padded, shuffled, Owen-scrambled Sobol points for every draw (sampler.cl) */
 #define CLPT_SAMPLER_SOBOL_GRID 3u /* the same points, the camera's moved to the centre of its 4x4 stratum (camera.cl) */
 
-/* One sphere and its material: 96 bytes.
+/* One sphere and its material: 128 bytes.
  * The sphere is stored as a point s0 on its surface near the scene, the outward unit normal n0
  * there, and the radius, so that the centre is s0 - radius * n0. The intersection then never
  * forms a term of size radius^2 (docs/numerics.md: radius-1e5 walls keep their precision).
@@ -60,7 +69,7 @@ typedef struct GpuSphere {
   float surface_point_lo[3];  /* remainders of surface_point, radius, surface_normal */
   float radius_lo;
   float surface_normal_lo[3];
-  float pad;
+  float pad[2];
 } GpuSphere;
 
 /* One node of the bounding volume hierarchy over triangles (and spheres, when a scene has more
@@ -90,7 +99,7 @@ typedef struct GpuTriangle {
   float pad2;
 } GpuTriangle;
 
-/* What shading needs of triangle i (same index as GpuTriangle): 80 bytes, read only at hits. */
+/* What shading needs of triangle i (same index as GpuTriangle): 112 bytes, read only at hits. */
 typedef struct GpuTriangleShading {
   float normal0[3];       /* unit shading normal at v0 (has_normals only) */
   float normal1[3];       /* at v1 */
@@ -101,6 +110,7 @@ typedef struct GpuTriangleShading {
    * estimation samples a point of this triangle (its pick probability / its area, world
    * units^-2), which a BSDF hit on it needs for its MIS weight; 0 for every other triangle. */
   float light_area_density;
+  float pad;
 } GpuTriangleShading;
 
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
@@ -110,35 +120,55 @@ typedef struct GpuTriangleShading {
 /* No Russian roulette (GpuRenderParams.rr_from). */
 #define CLPT_RR_NEVER 0xffffffffu
 
-/* A light as next-event estimation samples it: 48 bytes. The light list holds the emitter spheres
- * first (their count is CLPT_LIGHT_COUNT in a specialised kernel), then the emitting triangles.
+/* A light as next-event estimation samples it: 80 bytes. The light list holds the emitter spheres
+ * first (their count is CLPT_LIGHT_COUNT in a specialised kernel), then the emitting triangles,
+ * then the punctual lights.
  * Sphere lights: only a spherical cap of the emitter is sampled, uniformly by area: the part that
  * no other sphere hides (the host computes it in double, device_scene.cpp). The book's light is a
  * radius-100 sphere of which only a cap of radius about 1.41 pokes through the ceiling; sampling
  * the whole sphere would waste all but 5e-5 of the shadow rays on it. Triangle lights: a point
- * uniformly by area on the triangle.
- * Which light: in kernels without triangle lights, uniformly (1 / light count, as before
- * triangle lights existed); with them (CLPT_HAS_TRIANGLE_LIGHTS), by the alias table below over
- * each light's power (area times mean emitted radiance; light_pick.h on the host). */
-#define CLPT_LIGHT_SPHERE 0xffffffffu /* GpuLight.triangle of a sphere light */
+ * uniformly by area on the triangle. Punctual lights (point, spot, directional; KHR_lights_punctual
+ * in W/sr or W/m^2, docs/materials.md "Lights"): delta lights, reached by next-event estimation
+ * only.
+ * Which light: in kernels without triangle or punctual lights, uniformly (1 / light count, as
+ * before triangle lights existed); with them (CLPT_LIGHT_PICK_BY_POWER, light.cl), by the alias
+ * table below over each light's power (light_pick.h on the host). */
+#define CLPT_LIGHT_SPHERE 0xffffffffu /* GpuLight.triangle of a sphere or punctual light */
+/* GpuLight.punctual: 0 for sphere and triangle lights. */
+#define CLPT_LIGHT_POINT 1u
+#define CLPT_LIGHT_SPOT 2u
+#define CLPT_LIGHT_DIRECTIONAL 3u
 typedef struct GpuLight {
-  float cap_axis[3];       /* sphere: unit, from the emitter's centre through the middle of the cap */
-  clpt_u32 sphere;         /* sphere: index of the emitter in the sphere buffer; triangle: 0 */
+  float cap_axis[3];       /* sphere: unit, from the emitter's centre through the middle of the cap;
+                              spot, directional: unit, the direction the light travels */
+  clpt_u32 sphere;         /* sphere: index of the emitter in the sphere buffer; otherwise 0 */
   float one_minus_cos_cap; /* sphere: the cap, points p with 1 - axis.(p - c)/r <= this, in (0, 2];
-                              triangle: 0 (so no sphere hit ever lies in it) */
-  float cap_area;          /* sphere: 2 pi r^2 one_minus_cos_cap; triangle: its area; world units^2 */
-  clpt_u32 triangle;       /* triangle: index in the triangle buffer; sphere: CLPT_LIGHT_SPHERE */
-  float pick_probability;  /* probability that the power pick chooses this entry (triangle-light kernels) */
+                              triangle: 0, punctual: -1 (so no sphere hit ever lies in it) */
+  float cap_area;          /* sphere: 2 pi r^2 one_minus_cos_cap; triangle: its area; world units^2;
+                              punctual: 0 */
+  clpt_u32 triangle;       /* triangle: index in the triangle buffer; otherwise CLPT_LIGHT_SPHERE */
+  float pick_probability;  /* probability that the power pick chooses this entry (power-pick kernels) */
   float alias_threshold;   /* alias table: entry i is kept when the draw's fraction is below this */
   clpt_u32 alias;          /* alias table: else entry `alias` is taken */
-  float pad[2];
+  clpt_u32 punctual;       /* CLPT_LIGHT_POINT/SPOT/DIRECTIONAL, or 0 */
+  float range;             /* point, spot: the glTF range window's range, world units; 0: none */
+  float position[3];       /* point, spot: camera-relative world units */
+  float spot_scale;        /* spot: the cone ramp saturate(cos * scale + offset)^2 (glTF's
+                              lightAngleScale, lightAngleOffset); point: 0 and 1 */
+  float intensity[3];      /* point, spot: radiant intensity, W/sr; directional: irradiance, W/m^2 */
+  float spot_offset;
 } GpuLight;
 
-/* Pinhole camera at the origin: 48 bytes. A sample at image position (fx, fy) in [0,1)^2, fy
- * measured upwards, looks along sensor_center + sensor_right*(fx-0.5) + sensor_up*(fy-0.5). */
+/* The camera at the origin: 48 bytes. Perspective (a pinhole): a sample at image position
+ * (fx, fy) in [0,1)^2, fy measured upwards, looks along
+ * sensor_center + sensor_right*(fx-0.5) + sensor_up*(fy-0.5). Orthographic: the ray starts at
+ * sensor_right*(fx-0.5) + sensor_up*(fy-0.5) and travels along sensor_center (unit). */
+#define CLPT_PROJECTION_PERSPECTIVE 0u
+#define CLPT_PROJECTION_ORTHOGRAPHIC 1u
 typedef struct GpuCamera {
-  float sensor_center[3]; /* from the pinhole to the sensor centre, world units */
-  float pad0;
+  float sensor_center[3]; /* perspective: from the pinhole to the sensor centre; orthographic: the
+                             unit view direction; world units */
+  clpt_u32 projection;    /* CLPT_PROJECTION_* */
   float sensor_right[3]; /* full sensor width, pointing right */
   float pad1;
   float sensor_up[3]; /* full sensor height, pointing up */
@@ -195,6 +225,11 @@ typedef struct GpuPixelPass {
   X(GpuMaterial, phong_exponent)                                                                  \
   X(GpuMaterial, emission)                                                                        \
   X(GpuMaterial, ior)                                                                             \
+  X(GpuMaterial, metallic)                                                                        \
+  X(GpuMaterial, roughness)                                                                       \
+  X(GpuMaterial, transmission)                                                                    \
+  X(GpuMaterial, thickness)                                                                       \
+  X(GpuMaterial, attenuation)                                                                     \
   X(GpuBvhNode, lower)                                                                            \
   X(GpuBvhNode, first)                                                                            \
   X(GpuBvhNode, upper)                                                                            \
@@ -216,6 +251,7 @@ typedef struct GpuPixelPass {
   X(GpuSphere, radius_lo)                                                                         \
   X(GpuSphere, surface_normal_lo)                                                                 \
   X(GpuCamera, sensor_center)                                                                     \
+  X(GpuCamera, projection)                                                                        \
   X(GpuCamera, sensor_right)                                                                      \
   X(GpuCamera, sensor_up)                                                                         \
   X(GpuRenderParams, camera)                                                                      \
@@ -247,6 +283,12 @@ typedef struct GpuPixelPass {
   X(GpuLight, pick_probability)                                                                   \
   X(GpuLight, alias_threshold)                                                                    \
   X(GpuLight, alias)                                                                              \
+  X(GpuLight, punctual)                                                                           \
+  X(GpuLight, range)                                                                              \
+  X(GpuLight, position)                                                                           \
+  X(GpuLight, spot_scale)                                                                         \
+  X(GpuLight, intensity)                                                                          \
+  X(GpuLight, spot_offset)                                                                        \
   X(GpuPixelPass, sum)                                                                            \
   X(GpuPixelPass, valid_samples)                                                                  \
   X(GpuPixelPass, sum_sq)                                                                         \
@@ -267,12 +309,12 @@ typedef struct GpuPixelPass {
   static_assert(std::is_trivially_copyable_v<T> && std::is_standard_layout_v<T>,    \
                 #T " is copied to the device byte for byte");
 #endif
-CLPT_CHECK_SIZE(GpuMaterial, 36)
+CLPT_CHECK_SIZE(GpuMaterial, 64)
 CLPT_CHECK_SIZE(GpuBvhNode, 32)
 CLPT_CHECK_SIZE(GpuTriangle, 48)
-CLPT_CHECK_SIZE(GpuTriangleShading, 80)
-CLPT_CHECK_SIZE(GpuSphere, 96)
-CLPT_CHECK_SIZE(GpuLight, 48)
+CLPT_CHECK_SIZE(GpuTriangleShading, 112)
+CLPT_CHECK_SIZE(GpuSphere, 128)
+CLPT_CHECK_SIZE(GpuLight, 80)
 CLPT_CHECK_SIZE(GpuCamera, 48)
 CLPT_CHECK_SIZE(GpuRenderParams, 120)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)

@@ -25,9 +25,10 @@ TEST(KernelVariants, CoverEveryPairOfValues) {
     fewer.erase(fewer.begin() + long(i));
     EXPECT_FALSE(uncovered_pairs(fewer).empty()) << "variant " << variants[i].name() << " adds no pair";
   }
-  // 3 x 3 values of the two largest dimensions need at least 9 variants.
-  EXPECT_GE(variants.size(), 9u);
-  EXPECT_LE(variants.size(), 14u);
+  // 4 x 4 values of the two largest dimensions need at least 16 variants (of which the book
+  // estimator goes with only one).
+  EXPECT_GE(variants.size(), 13u);
+  EXPECT_LE(variants.size(), 20u);
   std::set<std::string> names;
   for (const KernelVariant& v : variants) EXPECT_TRUE(names.insert(v.name()).second) << v.name();
 }
@@ -54,6 +55,13 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
       EXPECT_EQ(p.features.triangles, v.has_mesh()) << v.name();
       EXPECT_EQ(p.features.spheres_in_bvh, v.has_mesh()) << v.name();
       EXPECT_EQ(p.features.has_hierarchy(), v.has_mesh()) << v.name();
+      EXPECT_EQ(p.features.pbr, v.has_pbr()) << v.name();
+      EXPECT_EQ(p.features.pbr_transmission, v.has_pbr_transmission()) << v.name();
+      EXPECT_EQ(p.features.pbr_volume, v.has_pbr_volume()) << v.name();
+      EXPECT_EQ(p.features.point_lights, v.punctual_light() == 1) << v.name();
+      EXPECT_EQ(p.features.spot_lights, v.punctual_light() == 2) << v.name();
+      EXPECT_EQ(p.features.directional_lights, v.punctual_light() == 3) << v.name();
+      EXPECT_EQ(p.features.orthographic, v.orthographic()) << v.name();
     }
     EXPECT_EQ(p.features.lockstep_group > 0,
               v.form() == ExecutionForm::Megakernel && v.megakernel_loop() == MegakernelLoop::Lockstep);

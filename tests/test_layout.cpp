@@ -34,11 +34,13 @@ TEST(StructLayout, HostMatchesDevice) {
   const auto device = download<cl_uint>(out, host.size());
   for (size_t i = 0; i < host.size(); ++i) EXPECT_EQ(host[i], device[i]) << names[i];
   // The sizes the comments in types.h promise.
-  EXPECT_EQ(sizeof(GpuSphere), 96u);
+  EXPECT_EQ(sizeof(GpuSphere), 128u);
   EXPECT_EQ(sizeof(GpuCamera), 48u);
   EXPECT_EQ(sizeof(GpuRenderParams), 120u);
   EXPECT_EQ(sizeof(GpuSampleSlot), 8u);
-  EXPECT_EQ(sizeof(GpuLight), 48u);
+  EXPECT_EQ(sizeof(GpuLight), 80u);
+  EXPECT_EQ(sizeof(GpuMaterial), 64u);
+  EXPECT_EQ(sizeof(GpuTriangleShading), 112u);
   EXPECT_EQ(sizeof(GpuPixelPass), 32u);
 }
 

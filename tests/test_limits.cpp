@@ -112,26 +112,26 @@ TEST(Limits, MemoryEstimateFollowsTheRenderers) {
   // Megakernel: spheres, one launch's pass statistics (at most budget / 32 pixels) and its job
   // results (16 B per sample: 1000 pixels x 4096 samples, the most a pass takes).
   const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
-  EXPECT_EQ(mk.total_bytes, 10u * 96 + 1000u * 32 + 1000u * 4096 * 16);
+  EXPECT_EQ(mk.total_bytes, 10u * 128 + 1000u * 32 + 1000u * 4096 * 16);
   EXPECT_EQ(estimate_device_memory(ExecutionForm::Megakernel, 1ull << 26, 1, 0, d).largest_bytes, 256u << 20);
   // Wavefront: 65536 paths x 256 B (the double preset's state, the largest), pass statistics,
   // job results bounded by the budget.
   const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1ull << 20, 1, 65536, d);
-  EXPECT_EQ(wf.total_bytes, 96u + 65536u * 256 + (32u << 20) + (256u << 20));
+  EXPECT_EQ(wf.total_bytes, 128u + 65536u * 256 + (32u << 20) + (256u << 20));
   EXPECT_EQ(wf.largest_label, "job results");
 }
 
-// Triangles add 48 + 80 B each and two 32-byte nodes per primitive (spheres included); a device
+// Triangles add 48 + 112 B each and two 32-byte nodes per primitive (spheres included); a device
 // whose largest allocation cannot hold the shading records refuses before upload, naming them.
 TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
   const MemoryEstimate plain = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
   const MemoryEstimate mesh = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000);
-  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 80) + 2u * 100010 * 32);
-  EXPECT_EQ(kDeviceBytesPerTriangle, 192u);
-  // An emitting mesh's triangles are light entries too (48 B each), counted from the scene.
+  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 112) + 2u * 100010 * 32);
+  EXPECT_EQ(kDeviceBytesPerTriangle, 224u);
+  // An emitting mesh's triangles are light entries too (80 B each), counted from the scene.
   const MemoryEstimate lit = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000, 100001);
-  EXPECT_EQ(lit.total_bytes - mesh.total_bytes, 100001u * 48);
+  EXPECT_EQ(lit.total_bytes - mesh.total_bytes, 100001u * 80);
   Scene scene;
   scene.meshes.push_back(test::closed_box({0, 0, 0}, {1, 1, 1}, test::emitter(1)));
   scene.meshes.push_back(test::closed_box({2, 0, 0}, {3, 1, 1}, test::lambertian(0.5)));
@@ -144,7 +144,7 @@ TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   EXPECT_EQ(big.largest_label, "triangle shading");
   const auto [code, message] = error_of([&] { check_device_memory(big, small); });
   EXPECT_EQ(code, ExitCode::DeviceError);
-  EXPECT_NE(message.find("buffer 'triangle shading' would be 76.3 MiB"), std::string::npos) << message;
+  EXPECT_NE(message.find("buffer 'triangle shading' would be 106.8 MiB"), std::string::npos) << message;
 }
 
 TEST(Limits, MemoryErrorsNameTheDeviceAndSizes) {

@@ -190,6 +190,16 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.phong = false;
   f.glass = false;
   f.mirror = false;
+  f.pbr = false;
+  f.pbr_transmission = false;
+  f.pbr_volume = false;
+  f.point_lights = f.spot_lights = f.directional_lights = false;
+  for (const PunctualLight& l : scene.lights) {
+    f.point_lights |= l.type == LightType::Point;
+    f.spot_lights |= l.type == LightType::Spot;
+    f.directional_lights |= l.type == LightType::Directional;
+  }
+  f.orthographic = scene.camera.projection == Projection::Orthographic;
   f.spheres_in_bvh = spheres_in_hierarchy(scene);
   const std::vector<bool> in_loop = loop_spheres(scene);
   f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
@@ -198,6 +208,9 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.phong |= m.type == MaterialType::Phong;
     f.glass |= m.type == MaterialType::Glass;
     f.mirror |= m.type == MaterialType::Mirror;
+    f.pbr |= m.type == MaterialType::Pbr;
+    f.pbr_transmission |= m.type == MaterialType::Pbr && m.transmission > 0;
+    f.pbr_volume |= m.type == MaterialType::Pbr && m.transmission > 0 && m.thickness > 0;
   };
   for (const Sphere& s : scene.spheres) uses(s.material);
   for (const TriangleMesh& m : scene.meshes) {
@@ -205,6 +218,15 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.triangles |= !m.triangles.empty();
   }
   return f;
+}
+
+void require_estimator_sees_lights(const Scene& scene) {
+  if (scene.lights.empty() || parse_estimator(scene.settings.estimator) != Estimator::Book) return;
+  const PunctualLight& l = scene.lights.front();
+  throw Error(ExitCode::Usage,
+              (l.where.file.empty() ? scene.file : l.where.str()) + ": " + l.name + ": a " + light_type_name(l.type) +
+                  " light is a delta light, which only next-event estimation reaches: the book estimator would "
+                  "render the scene without it (use --estimator nee, or render.estimator = \"nee\")");
 }
 
 KernelFeatures generic_features(Precision precision) {
@@ -228,7 +250,9 @@ bool picks_material_by_select(const KernelFeatures& features) {
   return reads_spheres_by_select(features) || hit_carries_sphere_centre(features);
 }
 
-bool scatter_draws_paired(const KernelFeatures& features) { return !features.glass && !features.russian_roulette; }
+bool scatter_draws_paired(const KernelFeatures& features) {
+  return !features.glass && !features.pbr && !features.russian_roulette;
+}
 
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
@@ -245,6 +269,16 @@ std::string kernel_build_options(const KernelFeatures& features) {
   o << " -DCLPT_HAS_PHONG=" << (features.phong ? 1 : 0);
   o << " -DCLPT_HAS_GLASS=" << (features.glass ? 1 : 0);
   o << " -DCLPT_HAS_MIRROR=" << (features.mirror ? 1 : 0);
+  // Named only when on (KernelFeatures: absent is off in a specialised kernel, on in the generic).
+  if (!features.generic) {
+    if (features.pbr) o << " -DCLPT_HAS_PBR=1";
+    if (features.pbr) o << " -DCLPT_HAS_PBR_TRANSMISSION=" << (features.pbr_transmission ? 1 : 0);
+    if (features.pbr) o << " -DCLPT_HAS_PBR_VOLUME=" << (features.pbr_volume ? 1 : 0);
+    if (features.point_lights) o << " -DCLPT_HAS_POINT_LIGHTS=1";
+    if (features.spot_lights) o << " -DCLPT_HAS_SPOT_LIGHTS=1";
+    if (features.directional_lights) o << " -DCLPT_HAS_DIRECTIONAL_LIGHTS=1";
+    if (features.orthographic) o << " -DCLPT_HAS_ORTHOGRAPHIC=1";
+  }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
   o << " -DCLPT_HAS_TRIANGLE_LIGHTS=" << (features.generic || features.triangle_lights ? 1 : 0);
@@ -307,6 +341,36 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << "\n";
   o << "  mirror shading: " << (features.mirror ? "compiled (the scene has a mirror material)"
                                                 : "left out (no mirror material in the scene)")
+    << "\n";
+  o << "  Pbr shading: "
+    << (features.generic ? "compiled (generic kernel)"
+        : features.pbr   ? "compiled (the scene has a pbr material: GGX with visible-normal sampling, bsdf_pbr.cl)"
+                         : "left out (no pbr material in the scene)")
+    << "\n";
+  o << "  Pbr transmission: "
+    << (features.generic ? "compiled (generic kernel)"
+        : features.pbr_transmission ? "compiled (a pbr material has transmission > 0: the thin-walled lobe)"
+                                    : "left out (no pbr material with transmission)")
+    << "\n";
+  o << "  Pbr volume: "
+    << (features.generic ? "compiled (generic kernel)"
+        : features.pbr_volume ? "compiled (a transmitting pbr material has a thickness: rough refraction, Beer's law)"
+                              : "left out (no transmitting pbr material with a thickness)")
+    << "\n";
+  const auto light_line = [&](const char* kind, bool on) {
+    o << "  " << kind << " lights: "
+      << (features.generic ? std::string("compiled (generic kernel)")
+          : on ? std::string("compiled (the scene has one: next-event estimation only, picked by power)")
+               : std::string("left out (none in the scene)"))
+      << "\n";
+  };
+  light_line("point", features.point_lights);
+  light_line("spot", features.spot_lights);
+  light_line("directional", features.directional_lights);
+  o << "  camera: "
+    << (features.generic ? "perspective or orthographic at run time (generic kernel)"
+        : features.orthographic ? "orthographic compiled (the scene's camera is orthographic)"
+                                : "perspective only (the pinhole)")
     << "\n";
   o << "  sphere loop: "
     << (features.generic ? std::string("run-time sphere count (generic kernel)")
@@ -377,13 +441,13 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   o << "  hit sphere's material: " << (picks_material_by_select(features) ? "selects over the loop's spheres" : "indexed")
     << "\n";
   o << "  scattering draws: "
-    << (features.generic ? std::string("as the scene's parameters say (one per bounce, or one per two without glass and Russian roulette)")
+    << (features.generic ? std::string("as the scene's parameters say (one per bounce, or one per two without glass, pbr and Russian roulette)")
         : scatter_draws_paired(features)
             ? std::string("one per two bounces (no glass, no Russian roulette)") +
                   (features.lockstep_group > 0 && !features.has_hierarchy() && features.unroll_scene_loops
                        ? ", evaluated once for the lockstep loop's two segments"
                        : "")
-            : std::string("one per bounce (glass or Russian roulette read a third or fourth uniform)"))
+            : std::string("one per bounce (glass, a pbr material or Russian roulette read a third or fourth uniform)"))
     << "\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();

@@ -119,6 +119,17 @@ struct KernelFeatures {
   bool phong = true;     // CLPT_HAS_PHONG
   bool glass = true;     // CLPT_HAS_GLASS
   bool mirror = true;    // CLPT_HAS_MIRROR
+  // The glTF material and what came with it. A specialised kernel names each of these in its
+  // options only when it is on (absent means off there, on in the generic kernel: path.cl,
+  // light.cl, camera.cl), so the book's scenes build from exactly the options they had before.
+  bool pbr = true;               // CLPT_HAS_PBR: a Pbr material (bsdf_pbr.cl)
+  bool pbr_transmission = true;  // CLPT_HAS_PBR_TRANSMISSION: a Pbr material with transmission > 0
+  bool pbr_volume = true;        // CLPT_HAS_PBR_VOLUME: such a material with a thickness > 0
+  bool point_lights = true;        // CLPT_HAS_POINT_LIGHTS
+  bool spot_lights = true;         // CLPT_HAS_SPOT_LIGHTS
+  bool directional_lights = true;  // CLPT_HAS_DIRECTIONAL_LIGHTS
+  bool orthographic = true;        // CLPT_HAS_ORTHOGRAPHIC: the camera's projection
+  bool punctual_lights() const { return point_lights || spot_lights || directional_lights; }
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
   // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks
   // lights by power (nee and a scene with an emitting mesh, or generic).
@@ -147,6 +158,11 @@ struct KernelFeatures {
 // Only what the scene uses. (Lambertian and emitters are always present.)
 KernelFeatures features_for_scene(const Scene& scene, Precision precision = Precision::Robust);
 
+// Throws Error(Usage) when the scene's punctual lights cannot be seen by its estimator: the book
+// estimator finds light only where a path hits an emitter, and a delta light is never hit
+// (docs/materials.md, "Lights"). Called by plan_render.
+void require_estimator_sees_lights(const Scene& scene);
+
 // Every feature compiled in: the generic kernel.
 KernelFeatures generic_features(Precision precision = Precision::Robust);
 
@@ -168,7 +184,8 @@ bool hit_carries_sphere_centre(const KernelFeatures& features);
 bool picks_material_by_select(const KernelFeatures& features);
 
 // Whether one draw serves the scattering of two bounces (CLPT_SCATTER_DRAW_PAIRS, path.cl's
-// scatter_draw): where scattering reads only two uniforms, i.e. no glass and no Russian roulette.
+// scatter_draw): where scattering reads only two uniforms, i.e. no glass, no Pbr material (whose
+// lobe choice reads u2) and no Russian roulette.
 // It changes which random numbers a path uses, so every form, loop and device of one render must
 // agree: a specialised kernel fixes it from these features, and the generic kernel reads
 // GpuRenderParams.scatter_draw_pairs, which make_params (render_plan.cpp) sets from the scene's.

@@ -5,6 +5,7 @@
 
 #include "cl/cl_device.h"
 #include "kernels/path_state.h"
+#include "scene/device_scene.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -86,10 +87,10 @@ void check_scene_limits(const Scene& scene, const SettingOrigins& origins) {
 
 uint64_t light_entry_bound(const Scene& scene) {
   uint64_t n = 0;
-  for (const Sphere& s : scene.spheres) n += s.material.type == MaterialType::Emitter;
+  for (const Sphere& s : scene.spheres) n += emits(s.material);
   for (const TriangleMesh& m : scene.meshes)
-    if (m.material.type == MaterialType::Emitter) n += m.triangles.size();
-  return n;
+    if (emits(m.material)) n += m.triangles.size();
+  return n + scene.lights.size();
 }
 
 uint64_t triangle_count(const Scene& scene) {

@@ -22,9 +22,9 @@ constexpr size_t kMaxSpheres = 4096;
 // Triangles over all meshes: their indices are 31-bit in the hierarchy's leaves and signed 32-bit
 // in a hit; 2^27 keeps every index (and the 2n - 1 nodes) far from either.
 constexpr uint64_t kMaxTriangles = 1ull << 27;
-// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (80) + at most two hierarchy
+// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most two hierarchy
 // nodes (2 x 32; a hierarchy over n primitives has at most 2n - 1 nodes).
-constexpr uint64_t kDeviceBytesPerTriangle = 48 + 80 + 2 * 32;
+constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 2 * 32;
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
 // kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose
@@ -76,8 +76,8 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
 
 // Triangles over all of the scene's meshes.
 uint64_t triangle_count(const Scene& scene);
-// At least the light list's entries (scene/device_scene.h): emitter spheres and the triangles of
-// emitting meshes (of which those of zero area get none).
+// At least the light list's entries (scene/device_scene.h): emitting spheres, the triangles of
+// emitting meshes (of which those of zero area get none) and the punctual lights.
 uint64_t light_entry_bound(const Scene& scene);
 
 // Throws Error(DeviceError) naming the device and the sizes when `need` exceeds the device's

@@ -88,6 +88,7 @@ GpuRenderParams make_params(const Scene& scene, const DeviceScene& ds) {
 RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInfo>& devices) {
   const Scene& scene = request.scene;
   const RenderSettings& s = scene.settings;
+  require_estimator_sees_lights(scene);
   RenderPlan plan;
   plan.width = s.width;
   plan.height = s.height;

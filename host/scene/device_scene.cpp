@@ -1,5 +1,6 @@
 #include "scene/device_scene.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene/light_pick.h"
@@ -29,6 +30,17 @@ GpuMaterial to_gpu(const Material& m) {
   g.phong_exponent = static_cast<float>(m.phong_exponent);
   store(g.emission, m.emission);
   g.ior = static_cast<float>(m.ior);
+  if (m.type == MaterialType::Pbr) {
+    g.metallic = static_cast<float>(m.metallic);
+    g.roughness = static_cast<float>(m.roughness);
+    g.transmission = static_cast<float>(m.transmission);
+    g.thickness = static_cast<float>(m.thickness);
+    // Beer's law: attenuation_color is what is left after attenuation_distance.
+    for (int i = 0; i < 3; ++i)
+      g.attenuation[i] = m.thickness > 0 && m.attenuation_distance > 0
+                             ? static_cast<float>(-std::log(std::max(m.attenuation_color[i], 1e-30)) / m.attenuation_distance)
+                             : 0.0f;
+  }
   return g;
 }
 
@@ -95,10 +107,10 @@ double triangle_area(const GpuTriangle& t) {
 // final order), then fills the pick distribution of the whole list: by power when there are
 // triangle lights, else uniform (what kernels without triangle lights draw); uniform also when
 // every power is 0. Each emitting triangle's light_area_density is set from its pick.
-void add_triangle_lights(DeviceScene& out) {
+void add_triangle_lights(DeviceScene& out, const std::vector<GpuLight>& punctual) {
   const size_t sphere_lights = out.lights.size();
   for (size_t i = 0; i < out.triangles.size(); ++i) {
-    if (out.triangle_shading[i].material.kind != CLPT_MATERIAL_EMITTER) continue;
+    if (!emits(out.triangle_shading[i].material)) continue;
     const double area = triangle_area(out.triangles[i]);
     if (!(area > 0)) continue;  // a degenerate triangle cannot be sampled (BSDF rays never hit it)
     GpuLight light{};
@@ -106,17 +118,28 @@ void add_triangle_lights(DeviceScene& out) {
     light.cap_area = static_cast<float>(area);
     out.lights.push_back(light);
   }
+  out.lights.insert(out.lights.end(), punctual.begin(), punctual.end());
   std::vector<double> weights(out.lights.size(), 1.0);
   if (out.lights.size() > sphere_lights) {
     std::vector<double> power;
     double total = 0;
     for (const GpuLight& l : out.lights) {
-      const GpuMaterial& m = l.triangle == CLPT_LIGHT_SPHERE ? out.spheres[l.sphere].material
-                                                             : out.triangle_shading[l.triangle].material;
-      power.push_back(light_power(l, m.emission));
+      if (l.punctual != 0) {
+        power.push_back(punctual_light_power(l, out.scene_radius));
+      } else {
+        const GpuMaterial& m = l.triangle == CLPT_LIGHT_SPHERE ? out.spheres[l.sphere].material
+                                                               : out.triangle_shading[l.triangle].material;
+        power.push_back(light_power(l, m.emission));
+      }
       total += power.back();
     }
     if (total > 0) weights = power;
+    // Defensive: with punctual lights, half of each pick is uniform. A directional light's power
+    // is an upper bound (its irradiance over the whole scene's disc, light_pick.h), which a
+    // radius-1000 ground sphere makes a million times the lit area's: by power alone the other
+    // lights were picked once in 16000 and rendered as fireflies. No light falls below 1 / (2 n).
+    if (total > 0 && !punctual.empty())
+      for (double& w : weights) w = 0.5 * w / total + 0.5 / double(weights.size());
   }
   fill_light_pick(out.lights, weights);
   for (const GpuLight& l : out.lights)
@@ -124,11 +147,58 @@ void add_triangle_lights(DeviceScene& out) {
       out.triangle_shading[l.triangle].light_area_density = static_cast<float>(double(l.pick_probability) / double(l.cap_area));
 }
 
+// A punctual light's entry (types.h, GpuLight): camera-relative position, the spot's cone ramp as
+// KHR_lights_punctual's reference code forms it.
+GpuLight to_gpu(const PunctualLight& light, const Vec3& camera_position) {
+  GpuLight g{};
+  g.one_minus_cos_cap = -1;  // no sphere hit lies in it
+  g.triangle = CLPT_LIGHT_SPHERE;
+  g.punctual = light.type == LightType::Point ? CLPT_LIGHT_POINT
+               : light.type == LightType::Spot ? CLPT_LIGHT_SPOT
+                                               : CLPT_LIGHT_DIRECTIONAL;
+  store(g.cap_axis, normalize(light.direction));
+  store(g.position, sub(light.position, camera_position));
+  store(g.intensity, light.intensity);
+  g.range = static_cast<float>(light.range);
+  g.spot_scale = 0;
+  g.spot_offset = 1;
+  if (light.type == LightType::Spot) {
+    const double cos_inner = std::cos(light.inner_cone_rad), cos_outer = std::cos(light.outer_cone_rad);
+    const double scale = 1.0 / std::max(0.001, cos_inner - cos_outer);
+    g.spot_scale = static_cast<float>(scale);
+    g.spot_offset = static_cast<float>(-cos_outer * scale);
+  }
+  return g;
+}
+
+// Radius of a sphere around every sphere and triangle of the scene, camera-relative (a directional
+// light's power estimate: its irradiance over the scene's bounding disc).
+double bounding_radius(const Scene& scene) {
+  Vec3 lower{1e300, 1e300, 1e300}, upper{-1e300, -1e300, -1e300};
+  const auto grow = [&](const Vec3& p, double r) {
+    for (int i = 0; i < 3; ++i) lower[i] = std::min(lower[i], p[i] - r), upper[i] = std::max(upper[i], p[i] + r);
+  };
+  for (const Sphere& s : scene.spheres) grow(s.center, s.radius);
+  for (const TriangleMesh& m : scene.meshes)
+    for (const Vec3& p : m.positions) grow(p, 0);
+  return lower[0] <= upper[0] ? 0.5 * length(sub(upper, lower)) : 1.0;
+}
+
 }  // namespace
+
+bool emits(const GpuMaterial& m) {
+  return m.kind == CLPT_MATERIAL_EMITTER ||
+         (m.kind == CLPT_MATERIAL_PBR && (m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0));
+}
+
+bool emits(const Material& m) {
+  return m.type == MaterialType::Emitter ||
+         (m.type == MaterialType::Pbr && (m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0));
+}
 
 bool has_triangle_lights(const Scene& scene) {
   for (const TriangleMesh& m : scene.meshes)
-    if (m.material.type == MaterialType::Emitter && !m.triangles.empty()) return true;
+    if (emits(m.material) && !m.triangles.empty()) return true;
   return false;
 }
 
@@ -149,7 +219,7 @@ std::vector<GpuLight> light_caps(const Scene& scene) {
   std::vector<GpuLight> lights;
   for (size_t i = 0; i < scene.spheres.size(); ++i) {
     const Sphere& a = scene.spheres[i];
-    if (a.material.type != MaterialType::Emitter) continue;
+    if (!emits(a.material)) continue;
     double one_minus_cos = 2;      // the whole sphere
     Vec3 axis = {0, 1, 0};
     bool hidden = false;
@@ -229,13 +299,19 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
     for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);
     for (GpuLight& light : out.lights) light.sphere = new_index[light.sphere];
   }
-  add_triangle_lights(out);
+  out.scene_radius = bounding_radius(scene);
+  std::vector<GpuLight> punctual;
+  for (const PunctualLight& l : scene.lights) punctual.push_back(to_gpu(l, cam.position));
+  add_triangle_lights(out, punctual);
 
-  // The book's sensor, scaled to unit distance: only directions matter for a pinhole.
+  // The book's sensor, scaled to unit distance: only directions matter for a pinhole. An
+  // orthographic camera's sensor is ortho_height world units high, its rays parallel.
   const Vec3 dir = normalize(sub(cam.look_at, cam.position));
   const double pi = 3.14159265358979323846;
-  const double sensor_height = 2.0 * std::tan(cam.vertical_fov_deg * pi / 360.0);
+  const bool ortho = cam.projection == Projection::Orthographic;
+  const double sensor_height = ortho ? cam.ortho_height : 2.0 * std::tan(cam.vertical_fov_deg * pi / 360.0);
   const double sensor_width = sensor_height * width / height;
+  out.camera.projection = ortho ? CLPT_PROJECTION_ORTHOGRAPHIC : CLPT_PROJECTION_PERSPECTIVE;
   const Vec3 right = scale(normalize(cross(dir, cam.up)), sensor_width);
   const Vec3 up = scale(normalize(cross(right, dir)), sensor_height);
   store(out.camera.sensor_center, dir);

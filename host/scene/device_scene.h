@@ -19,7 +19,8 @@ struct DeviceScene {
   std::vector<GpuSphere> spheres;
   uint32_t loop_spheres = 0;  // spheres the kernels test in their loop (the first ones)
   // What next-event estimation samples (types.h, GpuLight): the emitter spheres' caps
-  // (light_caps()), then every emitting triangle of positive area; with the pick distribution.
+  // (light_caps()), then every emitting triangle of positive area, then the punctual lights; with
+  // the pick distribution.
   std::vector<GpuLight> lights;
   // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
   std::vector<GpuTriangle> triangles;
@@ -27,6 +28,9 @@ struct DeviceScene {
   Bvh bvh;  // over the triangles, and the spheres when they are in it; no nodes when neither
   GpuCamera camera{};
   float ray_epsilon = 0;  // world units; see ray_epsilon_for()
+  // Radius of a sphere around all the scene's geometry, world units (light_pick.h: a directional
+  // light's power estimate).
+  double scene_radius = 1;
 };
 
 // The point s0 of sphere s nearest `anchor` (the camera's look-at point) and the outward unit
@@ -60,7 +64,12 @@ LightSampling light_sampling_of(const RenderSettings& settings);  // from settin
 // Sampled as the scene's settings.light_sampling says.
 std::vector<GpuLight> light_caps(const Scene& scene);
 
-// Whether the scene has emitting triangles (a mesh whose material is an emitter): then next-event
+// Whether a material emits light: an emitter, or a Pbr material with an emission above 0 (which
+// both emits and scatters). Emitting spheres get caps (light_caps), emitting triangles entries.
+bool emits(const Material& m);
+bool emits(const GpuMaterial& m);
+
+// Whether the scene has emitting triangles (a mesh whose material emits): then next-event
 // estimation samples them too, and its kernels compile triangle lights (kernel_options.cpp).
 bool has_triangle_lights(const Scene& scene);
 

@@ -11,6 +11,22 @@ double light_power(const GpuLight& light, const float emission[3]) {
   return double(light.cap_area) * (double(emission[0]) + double(emission[1]) + double(emission[2])) / 3.0;
 }
 
+double punctual_light_power(const GpuLight& light, double scene_radius) {
+  const double mean = (double(light.intensity[0]) + double(light.intensity[1]) + double(light.intensity[2])) / 3.0;
+  switch (light.punctual) {
+    case CLPT_LIGHT_POINT:
+      return 4 * mean;
+    case CLPT_LIGHT_SPOT: {
+      // The ramp is 1 at cos = (1 - offset) / scale and 0 at cos = -offset / scale.
+      const double cos_inner = light.spot_scale > 0 ? (1 - double(light.spot_offset)) / double(light.spot_scale) : 1;
+      const double cos_outer = light.spot_scale > 0 ? -double(light.spot_offset) / double(light.spot_scale) : 1;
+      return 2 * (1 - 0.5 * (cos_inner + cos_outer)) * mean;
+    }
+    default:
+      return mean * scene_radius * scene_radius;
+  }
+}
+
 void fill_light_pick(std::vector<GpuLight>& lights, const std::vector<double>& weights) {
   const size_t n = lights.size();
   if (weights.size() != n) throw Error(ExitCode::Failure, "light pick: one weight per light is needed");

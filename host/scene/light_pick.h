@@ -15,6 +15,13 @@ namespace clpt {
 // radiance's channels. (The factor pi of a Lambertian emitter is common to every light.)
 double light_power(const GpuLight& light, const float emission[3]);
 
+// The same measure (power / pi) of a punctual light, from its mean intensity I (W/sr) or
+// irradiance E (W/m^2): a point light 4 pi I; a spot light 2 pi (1 - cos) I over the cone up to
+// halfway between its inner and outer cosines; a directional light E pi R^2, R the radius of a
+// sphere around the scene (scene_radius), the disc of the scene it can light at most (pbrt's
+// estimate). Each divided by pi.
+double punctual_light_power(const GpuLight& light, double scene_radius);
+
 // Fills pick_probability, alias_threshold and alias of every entry so that the device's draw
 // (entry i = floor(u n), kept when frac(u n) < alias_threshold[i], else alias[i]) chooses entry k
 // with probability weights[k] / sum(weights). Weights must be >= 0 with a positive sum; throws

@@ -45,7 +45,7 @@ struct Material {
   double thickness = 0;
   Vec3 attenuation_color{1, 1, 1};
   double attenuation_distance = 0;  // world units; 0: no attenuation (glTF's +infinity)
-  // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/gltf.md says how a
+  // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/materials.md says how a
   // single-sided surface seen from behind is rendered.
   bool double_sided = true;
 };
@@ -53,6 +53,7 @@ struct Material {
 // KHR_lights_punctual in physical units, converted by the loader: a light of I candela has a
 // radiant intensity of I/683 W/sr, a directional light of E lux an irradiance of E/683 W/m^2 (the
 // lumens-per-watt factor Blender's glTF importer uses in its default, physical, mode).
+constexpr double kLumensPerWatt = 683;  // candela -> W/sr and lux -> W/m^2 divide by this
 enum class LightType : uint32_t { Point = 0, Spot = 1, Directional = 2 };
 const char* light_type_name(LightType type);
 struct PunctualLight {

@@ -23,6 +23,7 @@
 #include "scene/gltf_loader.h"
 #include "scene/mesh_file.h"
 #include "scene/mesh_placement.h"
+#include "scene/pbr_params.h"
 #include "scene/scene_validate.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -106,7 +107,8 @@ using scene_detail::SourceMap;
 
 constexpr MaterialType kMaterialTypes[] = {MaterialType::Lambertian, MaterialType::Phong,
                                            MaterialType::Glass, MaterialType::Emitter,
-                                           MaterialType::Mirror};
+                                           MaterialType::Mirror, MaterialType::Pbr};
+constexpr LightType kLightTypes[] = {LightType::Point, LightType::Spot, LightType::Directional};
 
 // Levenshtein distance; keys are short, so the O(n m) table is cheap.
 size_t edit_distance(std::string_view a, std::string_view b) {
@@ -231,6 +233,7 @@ class TableReader {
   std::optional<int64_t> integer(std::string_view key) const;
   std::optional<double> number(std::string_view key) const;
   std::optional<std::string> string(std::string_view key) const;
+  std::optional<bool> boolean(std::string_view key) const;
   std::optional<Vec3> vec3(std::string_view key) const;
   // The array of arrays under `key`, each of N numbers (integers when T is int64_t); records
   // each row's position as "KEY[i]". Empty when the key is absent.
@@ -294,6 +297,13 @@ std::optional<double> TableReader::number(std::string_view key) const {
   if (const auto* value = node->as_floating_point()) return value->get();
   if (const auto* value = node->as_integer()) return static_cast<double>(value->get());
   fail_type(key, *node, "a number");
+}
+
+std::optional<bool> TableReader::boolean(std::string_view key) const {
+  const toml::node* node = get(key);
+  if (!node) return std::nullopt;
+  if (const auto* value = node->as_boolean()) return value->get();
+  fail_type(key, *node, "true or false");
 }
 
 std::optional<std::string> TableReader::string(std::string_view key) const {
@@ -409,12 +419,25 @@ void read_render(const TableReader& render, RenderSettings& settings) {
   if (const auto sampling = render.string("light_sampling")) settings.light_sampling = *sampling;
 }
 
+// `projection`: "perspective" (the default: vertical_fov_deg) or "orthographic" (height, the
+// sensor's height in world units); each projection's own key only.
 void read_camera(const TableReader& camera_table, Camera& camera) {
-  camera_table.reject_unknown_keys({"position", "look_at", "up", "vertical_fov_deg"});
+  camera_table.reject_unknown_keys({"position", "look_at", "up", "vertical_fov_deg", "projection", "height"});
   camera.position = camera_table.required_vec3("position");
   camera.look_at = camera_table.required_vec3("look_at");
   if (const auto up = camera_table.vec3("up")) camera.up = *up;
+  const std::string projection = camera_table.string("projection").value_or("perspective");
+  const std::vector<std::string> projections = {"perspective", "orthographic"};
+  if (projection != projections[0] && projection != projections[1])
+    fail(camera_table.position_of(*camera_table.get("projection")), camera_table.key_path("projection"),
+         unknown_word_message("projection", projection, projections, "expected " + quoted_list(projections)));
+  camera.projection = projection == "orthographic" ? Projection::Orthographic : Projection::Perspective;
+  const char* foreign = camera.projection == Projection::Orthographic ? "vertical_fov_deg" : "height";
+  if (const toml::node* node = camera_table.get(foreign))
+    fail(camera_table.position_of(*node), camera_table.key_path(foreign),
+         "'" + std::string(foreign) + "' does not apply to a " + projection + " camera");
   if (const auto fov = camera_table.number("vertical_fov_deg")) camera.vertical_fov_deg = *fov;
+  if (camera.projection == Projection::Orthographic) camera.ortho_height = camera_table.required_number("height");
 }
 
 MaterialType parse_material_type(const TableReader& material) {
@@ -443,26 +466,52 @@ std::vector<std::string> material_parameters(MaterialType type) {
       return {"emission"};
     case MaterialType::Mirror:
       return {"reflectance"};
+    case MaterialType::Pbr: {
+      std::vector<std::string> keys{kPbrDoubleSidedKey};
+      for (const PbrNumber& n : kPbrNumbers) keys.emplace_back(n.key);
+      for (const PbrColour& c : kPbrColours) keys.emplace_back(c.key);
+      return keys;
+    }
   }
   return {};
 }
 
+// Every key any material type takes, "type" first.
+std::vector<std::string> all_material_keys() {
+  std::vector<std::string> keys{"type"};
+  for (MaterialType t : kMaterialTypes)
+    for (const std::string& k : material_parameters(t))
+      if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+  return keys;
+}
+
 void reject_foreign_parameters(const TableReader& material, MaterialType type) {
   const std::vector<std::string> own = material_parameters(type);
-  for (const char* key : {"reflectance", "exponent", "ior", "emission"}) {
-    if (std::find(own.begin(), own.end(), key) != own.end() || !material.get(key)) continue;
+  for (const std::string& key : all_material_keys()) {
+    if (key == "type" || std::find(own.begin(), own.end(), key) != own.end() || !material.get(key)) continue;
     fail(material.position_of(*material.get(key)), material.key_path(key),
          "'" + std::string(key) + "' does not apply to material type '" + material_type_name(type) +
              "'");
   }
 }
 
+// A `type = "pbr"` material: the keys of pbr_params.h, each at glTF's default when absent.
+void read_pbr_material(const TableReader& material, Material& m) {
+  for (const PbrNumber& n : kPbrNumbers) m.*n.field = material.number(n.key).value_or(n.fallback);
+  for (const PbrColour& c : kPbrColours) m.*c.field = material.vec3(c.key).value_or(c.fallback);
+  m.double_sided = material.boolean(kPbrDoubleSidedKey).value_or(true);
+}
+
 Material read_material(const TableReader& material) {
   // Unknown keys first, against every material key, so a misspelling gets its suggestion.
-  material.reject_unknown_keys({"type", "reflectance", "exponent", "ior", "emission"});
+  material.reject_unknown_keys(all_material_keys());
   Material m;
   m.type = parse_material_type(material);
   reject_foreign_parameters(material, m.type);
+  if (m.type == MaterialType::Pbr) {
+    read_pbr_material(material, m);
+    return m;
+  }
   if (m.type == MaterialType::Emitter) {
     m.emission = material.required_vec3("emission");
     return m;
@@ -603,7 +652,64 @@ GltfContents read_gltf(const TableReader& table, const SourceMap& sources, std::
   }
 }
 
-// The array of tables under `key` ([[sphere]], [[mesh]], [[gltf]]), each element read by
+LightType parse_light_type(const TableReader& light) {
+  const auto name = light.string("type");
+  if (!name) light.fail_missing("type");
+  std::vector<std::string> names;
+  for (LightType t : kLightTypes) {
+    if (*name == light_type_name(t)) return t;
+    names.emplace_back(light_type_name(t));
+  }
+  fail(light.position_of(*light.get("type")), light.key_path("type"),
+       unknown_word_message("light type", *name, names, "expected " + quoted_list(names)));
+}
+
+// One [[light]] table, a punctual light (docs/materials.md, "Lights"). Its strength is
+// `intensity` (per channel, W/sr for point and spot, W/m^2 for directional) or, photometric as
+// glTF writes it, `candela` (point, spot) or `lux` (directional) times `color`, divided by 683
+// lm/W. Keys that do not apply to the type are errors.
+PunctualLight read_light(const TableReader& light, size_t index) {
+  light.reject_unknown_keys({"name", "type", "position", "direction", "intensity", "candela", "lux", "color",
+                             "range", "inner_cone_deg", "outer_cone_deg"});
+  PunctualLight l;
+  l.name = light.string("name").value_or("light[" + std::to_string(index) + "]");
+  l.where = light.where();
+  l.type = parse_light_type(light);
+  const bool directional = l.type == LightType::Directional;
+  std::vector<std::string> foreign = {directional ? "candela" : "lux"};
+  if (directional) foreign.insert(foreign.end(), {"position", "range"});
+  if (l.type != LightType::Spot) foreign.insert(foreign.end(), {"inner_cone_deg", "outer_cone_deg"});
+  if (l.type == LightType::Point) foreign.emplace_back("direction");
+  for (const std::string& key : foreign)
+    if (const toml::node* node = light.get(key))
+      fail(light.position_of(*node), light.key_path(key),
+           "'" + key + "' does not apply to light type '" + light_type_name(l.type) + "'");
+  if (!directional) l.position = light.required_vec3("position");
+  if (l.type != LightType::Point) l.direction = light.required_vec3("direction");
+  const char* photometric = directional ? "lux" : "candela";
+  const auto intensity = light.vec3("intensity");
+  const auto amount = light.number(photometric);
+  if (intensity && amount)
+    fail(light.position_of(*light.get(photometric)), light.key_path(photometric),
+         "'" + std::string(photometric) + "' does not go with 'intensity' (a light's strength is one of them)");
+  if (intensity && light.get("color"))
+    fail(light.position_of(*light.get("color")), light.key_path("color"),
+         "'color' goes with '" + std::string(photometric) + "', not with 'intensity' (which is per channel)");
+  if (!intensity && !amount)
+    fail(light.where(), light.path(), "missing required key 'intensity' (or '" + std::string(photometric) + "')");
+  if (intensity) l.intensity = *intensity;
+  if (amount) {
+    const Vec3 color = light.vec3("color").value_or(Vec3{1, 1, 1});
+    for (int i = 0; i < 3; ++i) l.intensity[i] = color[i] * *amount / kLumensPerWatt;
+  }
+  l.range = light.number("range").value_or(0);
+  const double degrees = 3.14159265358979323846 / 180;
+  l.inner_cone_rad = light.number("inner_cone_deg").value_or(0) * degrees;
+  l.outer_cone_rad = light.number("outer_cone_deg").value_or(45) * degrees;
+  return l;
+}
+
+// The array of tables under `key` ([[sphere]], [[mesh]], [[gltf]], [[light]]), each element read by
 // read(reader, index); none when the key is absent.
 template <typename Read>
 auto read_table_array(const TableReader& top, const std::string& key, Read read) {
@@ -642,10 +748,11 @@ Scene build_scene(const toml::table& root, const std::string& file,
                   std::vector<std::pair<std::string, std::string>>& gltf_files) {
   SourceMap sources(file);
   const TableReader top(root, "", SourcePosition{file, 1, 1}, sources);
-  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh", "gltf"});
+  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh", "gltf", "light"});
   Scene scene;
   if (const auto image = top.table("image")) read_image(*image, scene.settings);
-  if (const auto render = top.table("render")) read_render(*render, scene.settings);
+  const auto render = top.table("render");
+  if (render) read_render(*render, scene.settings);
   const auto camera = top.table("camera");
   if (!camera) fail(top.where(), "camera", "missing required table [camera]");
   read_camera(*camera, scene.camera);
@@ -653,6 +760,7 @@ Scene build_scene(const toml::table& root, const std::string& file,
   scene.meshes = read_table_array(top, "mesh", [&](const TableReader& mesh, size_t i) {
     return read_mesh(mesh, i, sources, scene.warnings);
   });
+  scene.lights = read_table_array(top, "light", read_light);
   const auto gltfs = read_table_array(top, "gltf", [&](const TableReader& gltf, size_t) {
     return read_gltf(gltf, sources, scene.warnings, gltf_files);
   });
@@ -660,6 +768,9 @@ Scene build_scene(const toml::table& root, const std::string& file,
     scene.meshes.insert(scene.meshes.end(), contents.meshes.begin(), contents.meshes.end());
     scene.lights.insert(scene.lights.end(), contents.lights.begin(), contents.lights.end());
   }
+  // Punctual lights are reached only by next-event estimation: it is the default of a scene that
+  // has them (a file asking for the book estimator is refused by the plan, kernel_options.h).
+  if (!scene.lights.empty() && !(render && render->get("estimator"))) scene.settings.estimator = "nee";
   if (scene.spheres.empty() && scene.meshes.empty()) {
     const toml::node* sphere = top.get("sphere");
     fail(sphere ? top.position_of(*sphere) : top.where(), "sphere", "the scene has no spheres or meshes");

@@ -1,4 +1,5 @@
-// Similarity transforms of a whole scene (scene_transform.h): spheres, meshes and the camera.
+// Similarity transforms of a whole scene (scene_transform.h): spheres, meshes, punctual lights and
+// the camera.
 #include "scene/scene_transform.h"
 
 #include <cmath>
@@ -33,18 +34,22 @@ Scene scale_scene(const Scene& scene, double factor) {
     m.placement.scale = scale(m.placement.scale, factor);
     m.placement.translate = scale(m.placement.translate, factor);
   }
-  // Punctual lights: positions and ranges scale; a point or spot light's intensity scales by
-  // factor^2, so that the irradiance it gives at the scaled distances (inverse square) and so the
-  // image stay the same. Directions, and a directional light's irradiance, are unchanged. An
-  // orthographic view's height scales with the scene.
+  // A point or spot light's irradiance I / d^2 at the scaled distances is kept by I factor^2 (an
+  // emitter's radiance needs no change); a directional light's needs none.
   for (PunctualLight& l : out.lights) {
     l.position = scale(l.position, factor);
     l.range *= factor;
     if (l.type != LightType::Directional) l.intensity = scale(l.intensity, factor * factor);
   }
-  out.camera.ortho_height *= factor;
+  const auto scale_volume = [factor](Material& m) {
+    m.thickness *= factor;
+    m.attenuation_distance *= factor;
+  };
+  for (Sphere& s : out.spheres) scale_volume(s.material);
+  for (TriangleMesh& m : out.meshes) scale_volume(m.material);
   out.camera.position = scale(out.camera.position, factor);
   out.camera.look_at = scale(out.camera.look_at, factor);
+  out.camera.ortho_height *= factor;
   return out;
 }
 

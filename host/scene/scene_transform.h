@@ -11,15 +11,16 @@ namespace clpt {
 // Every sphere centre and radius, mesh vertex, the camera position and look-at point multiplied by `factor`
 // (> 0 and finite; throws std::invalid_argument otherwise). `up` and the field of view are
 // directions and an angle: unchanged, and so are mesh normals. Each mesh's placement is composed
-// with the transform (see TriangleMesh::placement). Punctual lights move and their ranges scale;
-// point and spot intensities scale by factor^2 so that the image is unchanged.
+// with the transform (see TriangleMesh::placement). Punctual lights' positions and ranges, Pbr
+// volumes' thickness and attenuation distance and an orthographic camera's height scale too,
+// and a point or spot light's intensity by factor^2, so the image stays the same.
 Scene scale_scene(const Scene& scene, double factor);
 
-// `offset` added to every sphere centre, mesh vertex, the camera position and look-at point (finite; throws
+// `offset` added to every sphere centre, mesh vertex, punctual light, the camera position and look-at point (finite; throws
 // std::invalid_argument otherwise).
 Scene translate_scene(const Scene& scene, const Vec3& offset);
 
-// Every emitter's emission (Pbr surfaces' too) and every punctual light's intensity multiplied by
+// Every emitter's and Pbr material's emission and every punctual light's intensity multiplied by
 // `factor` (> 0 and finite): the image scales by it too.
 Scene scale_emission(const Scene& scene, double factor);
 

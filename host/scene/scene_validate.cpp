@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "scene/pbr_params.h"
 #include "scene/vec3_ops.h"
 #include "util/error.h"
 
@@ -83,10 +84,37 @@ void check_emission(const Vec3& emission, const std::string& key, const SourceMa
     fail_at(sources, key, "emission must not be all zero (got " + format_vec3(emission) + ")");
 }
 
+// The Pbr parameters' ranges, as pbr_params.h declares them; emission may be 0 (a Pbr surface
+// need not emit), and a volume's attenuation needs a thickness.
+void check_pbr_material(const Material& m, const std::string& key, const SourceMap& sources) {
+  for (const PbrNumber& n : kPbrNumbers) {
+    const std::string k = key + "." + n.key;
+    if (n.max == kPbrUnbounded) {
+      require_finite(m.*n.field, k, sources);
+      if (m.*n.field < n.min)
+        fail_at(sources, k, leaf_name(k) + " must be >= " + format_number(n.min) + " (got " + format_number(m.*n.field) + ")");
+    } else {
+      require_in_range(m.*n.field, n.min, n.max, k, sources);
+    }
+  }
+  for (const PbrColour& c : kPbrColours) {
+    const std::string k = key + "." + c.key;
+    const Vec3& v = m.*c.field;
+    require_finite(v, k, sources);
+    for (double channel : v)
+      if (channel < 0 || (c.max_one && channel > 1))
+        fail_at(sources, k, leaf_name(k) + (c.max_one ? " must be in [0, 1]" : " must be >= 0") + " (got " +
+                                format_vec3(v) + ")");
+  }
+}
+
 // Only the parameters of the material's own type are checked: the loader leaves the others at
 // their defaults (it rejects keys that do not apply to the type).
 void check_material(const Material& m, const std::string& key, const SourceMap& sources) {
   switch (m.type) {
+    case MaterialType::Pbr:
+      check_pbr_material(m, key, sources);
+      break;
     case MaterialType::Lambertian:
     case MaterialType::Mirror:
       check_reflectance(m.reflectance, key + ".reflectance", sources);
@@ -130,11 +158,40 @@ std::array<uint32_t, 3> corners(const std::array<int64_t, N>& row, size_t a, siz
   return {uint32_t(row[a]), uint32_t(row[b]), uint32_t(row[c])};
 }
 
+// A punctual light: finite position, a direction that is not zero, an intensity >= 0 and not all
+// zero, a range >= 0 (0: none), spot cones 0 <= inner < outer <= 90 degrees.
+void check_light(const PunctualLight& light, const std::string& key, const SourceMap& sources) {
+  require_finite(light.position, key + ".position", sources);
+  require_finite(light.direction, key + ".direction", sources);
+  if (light.type != LightType::Point && length(light.direction) == 0)
+    fail_at(sources, key + ".direction", "direction must not be the zero vector");
+  const std::string strength = key + ".intensity";  // candela/lux: the table's position stands in
+  require_finite(light.intensity, strength, sources);
+  for (double channel : light.intensity)
+    if (channel < 0) fail_at(sources, strength, "intensity must be >= 0 (got " + format_vec3(light.intensity) + ")");
+  if (light.intensity[0] == 0 && light.intensity[1] == 0 && light.intensity[2] == 0)
+    fail_at(sources, strength, "intensity must not be all zero (got " + format_vec3(light.intensity) + ")");
+  require_finite(light.range, key + ".range", sources);
+  if (light.range < 0) fail_at(sources, key + ".range", "range must be >= 0 (got " + format_number(light.range) + ")");
+  if (light.type != LightType::Spot) return;
+  require_in_range(degrees_of(light.inner_cone_rad), 0, 90, key + ".inner_cone_deg", sources);
+  require_in_range(degrees_of(light.outer_cone_rad), 0, 90, key + ".outer_cone_deg", sources);
+  if (!(light.inner_cone_rad < light.outer_cone_rad))
+    fail_at(sources, key + ".inner_cone_deg",
+            "inner_cone_deg must be below outer_cone_deg (got " + format_number(degrees_of(light.inner_cone_rad)) +
+                " and " + format_number(degrees_of(light.outer_cone_rad)) + ")");
+}
+
 // The camera must define a view direction, and `up` must pick a roll around it.
 void check_camera(const Camera& camera, const SourceMap& sources) {
   require_finite(camera.position, "camera.position", sources);
   require_finite(camera.look_at, "camera.look_at", sources);
   require_finite(camera.up, "camera.up", sources);
+  if (camera.projection == Projection::Orthographic) {
+    require_finite(camera.ortho_height, "camera.height", sources);
+    if (!(camera.ortho_height > 0))
+      fail_at(sources, "camera.height", "height must be > 0 (got " + format_number(camera.ortho_height) + ")");
+  }
   require_finite(camera.vertical_fov_deg, "camera.vertical_fov_deg", sources);
   if (!(camera.vertical_fov_deg > 0 && camera.vertical_fov_deg < 180))
     fail_at(sources, "camera.vertical_fov_deg",
@@ -226,18 +283,19 @@ void check_settings(const RenderSettings& settings, const SourceMap& sources) {
             "unknown light sampling '" + settings.light_sampling + "' (expected 'cap' or 'sphere')");
 }
 
-// Punctual lights and emissive Pbr surfaces (a [[gltf]] table's) count as the scene's light too.
+// Light comes from an emitter, a Pbr material with an emission, or a punctual light.
 void require_emitter(const Scene& scene, const SourceMap& sources) {
+  const auto emits = [](const Material& m) {
+    return m.type == MaterialType::Emitter ||
+           (m.type == MaterialType::Pbr && (m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0));
+  };
   if (!scene.lights.empty()) return;
   for (const Sphere& sphere : scene.spheres)
-    if (sphere.material.type == MaterialType::Emitter) return;
-  for (const TriangleMesh& mesh : scene.meshes) {
-    if (mesh.material.type == MaterialType::Emitter) return;
-    const Vec3& e = mesh.material.emission;
-    if (mesh.material.type == MaterialType::Pbr && (e[0] > 0 || e[1] > 0 || e[2] > 0)) return;
-  }
+    if (emits(sphere.material)) return;
+  for (const TriangleMesh& mesh : scene.meshes)
+    if (emits(mesh.material)) return;
   fail(SourcePosition{sources.file(), 1, 1}, scene.spheres.empty() ? "mesh" : "sphere",
-       "the scene has no emitter, so every image would be black");
+       "the scene has no emitter or light, so every image would be black");
 }
 
 struct IntegerRule {
@@ -298,7 +356,12 @@ void validate_scene(const Scene& scene, const SourceMap& sources) {
     check_sphere(scene.spheres[i], "sphere[" + std::to_string(i) + "]", sources);
   for (size_t i = 0; i < scene.meshes.size(); ++i)
     check_material(scene.meshes[i].material, "mesh[" + std::to_string(i) + "].material", sources);
+  for (size_t i = 0; i < scene.lights.size(); ++i) check_light(scene.lights[i], "light[" + std::to_string(i) + "]", sources);
   require_emitter(scene, sources);
+}
+
+double degrees_of(double radians) {
+  return std::round(radians * (180 / 3.14159265358979323846) * 1e9) / 1e9;
 }
 
 }  // namespace clpt::scene_detail

@@ -38,6 +38,10 @@ class SourceMap {
 [[noreturn]] void fail(const SourcePosition& where, const std::string& key,
                        const std::string& message);
 
+// An angle in degrees, rounded to 1e-9 degrees: what the file wrote (30, not 29.999999999999996)
+// for an angle the loader converted to radians. For messages and the scene writer.
+double degrees_of(double radians);
+
 // Shortest text that reads back as `value`: "-1", "0.7", "1e+300", "nan", "inf".
 std::string format_number(double value);
 

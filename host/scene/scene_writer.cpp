@@ -1,4 +1,5 @@
-// Scene -> TOML (scene_writer.h): spheres, meshes (file or inline) and the settings.
+// Scene -> TOML (scene_writer.h): spheres, meshes (file or inline), punctual lights, the camera
+// and the settings.
 #include "scene/scene_writer.h"
 
 #include <toml++/toml.h>
@@ -10,6 +11,8 @@
 #include <vector>
 
 #include "scene/mesh_file.h"
+#include "scene/pbr_params.h"
+#include "scene/scene_validate.h"
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -36,6 +39,11 @@ toml::table material_table(const Material& m) {
       break;
     case MaterialType::Emitter:
       t.insert("emission", vec3_array(m.emission));
+      break;
+    case MaterialType::Pbr:
+      for (const PbrColour& c : kPbrColours) t.insert(c.key, vec3_array(m.*c.field));
+      for (const PbrNumber& n : kPbrNumbers) t.insert(n.key, m.*n.field);
+      t.insert(kPbrDoubleSidedKey, m.double_sided);
       break;
   }
   t.is_inline(true);  // `material = { ... }`, as the README writes it
@@ -98,6 +106,31 @@ void refuse_gltf_content(const Scene& scene) {
                                    "), which clpt cannot write back as a TOML scene yet");
 }
 
+// A punctual light as [[light]] writes it, its strength radiometric (`intensity`, W/sr or W/m^2).
+toml::table light_table(const PunctualLight& l) {
+  toml::table t{{"name", l.name}, {"type", light_type_name(l.type)}};
+  if (l.type != LightType::Directional) t.insert("position", vec3_array(l.position));
+  if (l.type != LightType::Point) t.insert("direction", vec3_array(l.direction));
+  t.insert("intensity", vec3_array(l.intensity));
+  if (l.type != LightType::Directional && l.range > 0) t.insert("range", l.range);
+  if (l.type == LightType::Spot) {
+    t.insert("inner_cone_deg", scene_detail::degrees_of(l.inner_cone_rad));
+    t.insert("outer_cone_deg", scene_detail::degrees_of(l.outer_cone_rad));
+  }
+  return t;
+}
+
+toml::table camera_table(const Camera& c) {
+  toml::table t{{"position", vec3_array(c.position)}, {"look_at", vec3_array(c.look_at)}, {"up", vec3_array(c.up)}};
+  if (c.projection == Projection::Orthographic) {
+    t.insert("projection", "orthographic");
+    t.insert("height", c.ortho_height);
+  } else {
+    t.insert("vertical_fov_deg", c.vertical_fov_deg);
+  }
+  return t;
+}
+
 }  // namespace
 
 std::string scene_to_toml(const Scene& scene, const std::string& header, const std::string& written_as) {
@@ -111,16 +144,16 @@ std::string scene_to_toml(const Scene& scene, const std::string& header, const s
                                     {"max_bounces", r.max_bounces},
                                     {"sampler", sampler_name(r.sampler)},
                                     {"estimator", r.estimator}});
-  root.insert("camera", toml::table{{"position", vec3_array(c.position)},
-                                    {"look_at", vec3_array(c.look_at)},
-                                    {"up", vec3_array(c.up)},
-                                    {"vertical_fov_deg", c.vertical_fov_deg}});
+  root.insert("camera", camera_table(c));
   toml::array spheres;
   for (const Sphere& s : scene.spheres) spheres.push_back(sphere_table(s));
   if (!spheres.empty()) root.insert("sphere", std::move(spheres));
   toml::array meshes;
   for (const TriangleMesh& m : scene.meshes) meshes.push_back(mesh_table(m, scene.file, written_as));
   if (!meshes.empty()) root.insert("mesh", std::move(meshes));
+  toml::array lights;
+  for (const PunctualLight& l : scene.lights) lights.push_back(light_table(l));
+  if (!lights.empty()) root.insert("light", std::move(lights));
 
   std::ostringstream out;
   std::istringstream lines(header);

@@ -1,5 +1,6 @@
 #include "tools/kernel_variants.h"
 
+#include <algorithm>
 #include <set>
 #include <tuple>
 
@@ -10,18 +11,31 @@ namespace clpt {
 namespace {
 
 // Dimension positions in KernelVariant::choice.
-enum Dim { kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry, kDimCount };
+enum Dim {
+  kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry,
+  kPbr, kLights, kCamera, kDimCount
+};
+
+// Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
+// refuses them, kernel_options.h), so it goes only with "no-punctual".
+bool renderable(const std::vector<int>& choice) {
+  return !(choice[kEstimator] == 0 && choice[kLights] != 0);
+}
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
 using Pair = std::tuple<int, int, int, int>;
 
+// Every pair of values of two dimensions that a renderable combination contains.
 std::set<Pair> all_pairs() {
   const auto& dims = kernel_variant_dimensions();
   std::set<Pair> pairs;
   for (int a = 0; a < int(dims.size()); ++a)
     for (int b = a + 1; b < int(dims.size()); ++b)
       for (int va = 0; va < int(dims[a].values.size()); ++va)
-        for (int vb = 0; vb < int(dims[b].values.size()); ++vb) pairs.insert({a, va, b, vb});
+        for (int vb = 0; vb < int(dims[b].values.size()); ++vb) {
+          const bool book_and_punctual = (a == kEstimator && va == 0 && b == kLights && vb != 0);
+          if (!book_and_punctual) pairs.insert({a, va, b, vb});
+        }
   return pairs;
 }
 
@@ -90,6 +104,42 @@ std::vector<Sphere> pebbles() {
   return out;
 }
 
+// A ball of the glTF material between the book's two, in front of them: rough half-metal, or a
+// thin-walled transmitting one that also emits (so it is a sphere light as well), or a volume
+// (thickness > 0) that refracts and absorbs.
+Sphere pbr_ball(bool transmission, bool volume) {
+  Sphere s;
+  s.name = "variant_pbr_ball";
+  s.center = {0, 0.6, 1.0};
+  s.radius = 0.6;
+  s.material.type = MaterialType::Pbr;
+  s.material.reflectance = {0.9, 0.6, 0.3};
+  s.material.metallic = transmission ? 0.0 : 0.5;
+  s.material.roughness = transmission ? 0.2 : 0.4;
+  s.material.transmission = transmission ? 0.7 : 0.0;
+  if (transmission && !volume) s.material.emission = {0.2, 0.1, 0.05};
+  if (volume) {
+    s.material.thickness = 1.2;
+    s.material.attenuation_color = {0.9, 0.5, 0.3};
+    s.material.attenuation_distance = 1.0;
+  }
+  return s;
+}
+
+// One punctual light of the kind `value` names (1 point, 2 spot, 3 directional), inside the room.
+PunctualLight punctual_light(int value) {
+  PunctualLight l;
+  l.type = value == 1 ? LightType::Point : value == 2 ? LightType::Spot : LightType::Directional;
+  l.name = std::string("variant_") + light_type_name(l.type);
+  l.position = {0.5, 3.0, 2.0};
+  l.direction = value == 3 ? Vec3{0.3, -1, -0.5} : Vec3{0, -1, 0};
+  l.intensity = value == 3 ? Vec3{0.5, 0.5, 0.5} : Vec3{3, 3, 3};
+  l.range = value == 1 ? 6.0 : 0.0;
+  l.inner_cone_rad = 0.3;
+  l.outer_cone_rad = 0.7;
+  return l;
+}
+
 }  // namespace
 
 const std::vector<VariantDimension>& kernel_variant_dimensions() {
@@ -103,8 +153,11 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"phong", {"no-phong", "phong"}},
       {"glass", {"no-glass", "glass"}},
       {"geometry", {"spheres", "mesh"}},
+      {"pbr", {"no-pbr", "pbr", "pbr-transmission", "pbr-volume"}},
+      {"lights", {"no-punctual", "point", "spot", "directional"}},
+      {"camera", {"perspective", "orthographic"}},
   };
-  static_assert(kDimCount == 9, "one entry per Dim");
+  static_assert(kDimCount == 12, "one entry per Dim");
   return dims;
 }
 
@@ -126,6 +179,11 @@ SceneLoops KernelVariant::scene_loops() const {
 bool KernelVariant::has_phong() const { return choice[kPhong] == 1; }
 bool KernelVariant::has_glass() const { return choice[kGlass] == 1; }
 bool KernelVariant::has_mesh() const { return choice[kGeometry] == 1; }
+bool KernelVariant::has_pbr() const { return choice[kPbr] != 0; }
+bool KernelVariant::has_pbr_transmission() const { return choice[kPbr] >= 2; }
+bool KernelVariant::has_pbr_volume() const { return choice[kPbr] == 3; }
+int KernelVariant::punctual_light() const { return choice[kLights]; }
+bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -147,6 +205,9 @@ std::vector<KernelVariant> covering_kernel_variants() {
       }
     candidates = std::move(longer);
   }
+  candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
+                                  [](const std::vector<int>& c) { return !renderable(c); }),
+                   candidates.end());
   std::set<Pair> uncovered = all_pairs();
   std::vector<KernelVariant> chosen;
   while (!uncovered.empty()) {
@@ -159,6 +220,16 @@ std::vector<KernelVariant> covering_kernel_variants() {
     }
     for (const Pair& p : pairs_of(*best)) uncovered.erase(p);
     chosen.push_back(KernelVariant{*best});
+  }
+  // Greedy can leave an early pick redundant once later ones cover its pairs: drop such picks,
+  // first to last, so every variant of the set adds a pair.
+  for (size_t i = 0; i < chosen.size();) {
+    std::vector<KernelVariant> fewer = chosen;
+    fewer.erase(fewer.begin() + long(i));
+    if (uncovered_pairs(fewer).empty())
+      chosen = std::move(fewer);
+    else
+      ++i;
   }
   return chosen;
 }
@@ -193,6 +264,12 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   if (variant.has_mesh()) {
     scene.meshes.push_back(mirror_octahedron());
     for (const Sphere& s : pebbles()) scene.spheres.push_back(s);
+  }
+  if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
+  if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
+  if (variant.orthographic()) {
+    scene.camera.projection = Projection::Orthographic;
+    scene.camera.ortho_height = 6;
   }
   scene.settings.estimator = estimator_name(variant.estimator());
   scene.settings.rr_from = variant.russian_roulette() ? 2 : -1;

@@ -1,8 +1,10 @@
 // The covering set of kernel variants: a few kernel configurations that together contain every
 // value of every dimension that changes what a kernel compiles (execution form and megakernel
 // loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
-// unrolled or rolled, each material present or absent, spheres alone or a mesh and a hierarchy)
-// and every pair of values of two dimensions. Two test tiers use the same set:
+// unrolled or rolled, each material present or absent, spheres alone or a mesh and a hierarchy,
+// the glTF material with or without transmission, each punctual light kind, the camera's
+// projection) and every pair of values of two dimensions that can be rendered together (the book
+// estimator refuses punctual lights). Two test tiers use the same set:
 //   oclgrind  renders each on Oclgrind with its memory, race and API checks, and against PoCL
 //   gpucc     compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
 //             (`clpt kernels emit` writes their sources and build options)
@@ -44,6 +46,11 @@ struct KernelVariant {
   // The scene has a mesh (a mirror octahedron) and 12 pebbles more: the kernel traverses a
   // hierarchy of triangles and spheres (with the book's balls) instead of only the sphere loop.
   bool has_mesh() const;
+  bool has_pbr() const;               // a ball of the glTF material
+  bool has_pbr_transmission() const;  // that ball transmits (thin-walled, and emits; or a volume)
+  bool has_pbr_volume() const;        // that ball is a volume (thickness > 0): refraction, Beer's law
+  int punctual_light() const;         // 0 none, 1 point, 2 spot, 3 directional
+  bool orthographic() const;          // the camera's projection
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
@@ -62,8 +69,10 @@ std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& varia
 // The variant's scene from the book's diffuse scene (scenes/diffuse.toml): its left ball becomes
 // the specular scene's Phong material and its right ball the glass scene's glass when the
 // variant has them; a mesh variant adds a mirror octahedron on the floor and 12 pebbles (so that
-// triangles and spheres are hierarchy primitives); its estimator and Russian roulette (from
-// bounce 2) are set from the variant.
+// triangles and spheres are hierarchy primitives); a pbr variant a ball of the glTF material
+// between them; a light variant one punctual light in the room; an orthographic variant that
+// camera, 6 units high; its estimator and Russian roulette (from bounce 2) are set from the
+// variant.
 // Throws Error(Failure) when the scene has no spheres named left_ball and right_ball.
 Scene variant_scene(const Scene& diffuse, const KernelVariant& variant);
 

@@ -8,6 +8,7 @@
 #include "intersect.cl"
 #include "bvh.cl"
 #include "bsdf.cl"
+#include "bsdf_pbr.cl"
 
 CLPT_INLINE Vec3 v3_from4(float4 v) { return v3(v.x, v.y, v.z); }
 CLPT_INLINE float4 v3_to4(Vec3 v) { return (float4)(v.x, v.y, v.z, 0.0f); }
@@ -158,4 +159,31 @@ __kernel void probe_pow_unit(__global const float2* in, __global float* out) {
 __kernel void probe_udiv(__global const uint2* in, __global uint* out) {
   const size_t i = get_global_id(0);
   out[i] = clpt_udiv(in[i].x, in[i].y);
+}
+
+/* The Pbr material (bsdf_pbr.cl). params: base colour xyz and metallic w; shape: roughness x,
+ * ior y, transmission z, w: 0 thin-walled, 1 a volume entered (wo outside), 2 a volume left (wo
+ * inside: the outward normal is -z). Each work-item i reads wo (local frame, +z the normal) and uniforms u
+ * from in[2 i], in[2 i + 1], and writes the sampled direction (w: its pdf), the weight (w: 0),
+ * then f cos and the pdf evaluated at in[2 i + 1].xyz read as a direction (eval mode). */
+__kernel void probe_pbr(float4 params, float4 shape, __global const float4* in, __global float4* out) {
+  const size_t i = get_global_id(0);
+  const PbrParams p =
+      pbr_params(v3(params.x, params.y, params.z), params.w, shape.x, shape.y, shape.z, shape.w > 0.5f ? 1 : 0);
+  const float4 wo4 = in[2 * i], u4 = in[2 * i + 1];
+  const Vec3 n = v3(0.0f, 0.0f, shape.w > 1.5f ? -1.0f : 1.0f);
+  const Vec3 d = v3(-wo4.x, -wo4.y, -wo4.z);
+  Uniform4 u;
+  u.u0 = u4.x;
+  u.u1 = u4.y;
+  u.u2 = u4.z;
+  u.u3 = u4.w;
+  Vec3 weight;
+  real pdf;
+  const Vec3 wi = bsdf_pbr_sample(d, n, &p, u, &weight, &pdf);
+  real eval_pdf;
+  const Vec3 f_cos = bsdf_pbr_eval(d, n, &p, v3(u4.x, u4.y, u4.z), &eval_pdf);
+  out[3 * i] = (float4)(wi.x, wi.y, wi.z, pdf);
+  out[3 * i + 1] = (float4)(weight.x, weight.y, weight.z, 0.0f);
+  out[3 * i + 2] = (float4)(f_cos.x, f_cos.y, f_cos.z, eval_pdf);
 }
