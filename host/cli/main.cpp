@@ -8,6 +8,9 @@
 #include <string>
 
 #include "cli/app.h"
+#ifdef CLPT_WITH_OIIO
+#include "io/image_io.h"
+#endif
 #include "render/rank_group.h"
 #include "render/rank_pass.h"
 #include "util/error.h"
@@ -38,6 +41,9 @@ int fail(const char* kind, const std::string& message, int code, bool shared_by_
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef CLPT_WITH_OIIO
+  clpt::install_scene_image_reader();  // textures and environment files (scene/scene_image.h)
+#endif
   clpt::ClptApp cli;
   try {
     cli.app.parse(argc, argv);

@@ -26,6 +26,7 @@ struct LoadedImage {
   int height = 0;
   std::vector<std::string> channels;
   std::vector<float> pixels;  // channel-interleaved, row 0 at the top
+  std::string pixel_type;     // the file's sample type as OpenImageIO names it ("uint8", "half", "float", ...)
   ImageMetadata metadata;     // string form of every attribute
   // Index of a named channel, or -1.
   int channel(const std::string& name) const;

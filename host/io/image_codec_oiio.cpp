@@ -25,6 +25,7 @@ std::string read_image(const std::string& path, clpt::LoadedImage& img) {
   img.width = spec.width;
   img.height = spec.height;
   img.channels = spec.channelnames;
+  img.pixel_type = spec.format.c_str();
   img.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data())) return in->geterror();
   for (const OIIO::ParamValue& p : spec.extra_attribs) img.metadata[p.name().string()] = p.get_string();

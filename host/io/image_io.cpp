@@ -15,6 +15,7 @@
 #include <future>
 #include <mutex>
 
+#include "scene/scene_image.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/module_loader.h"
@@ -108,7 +109,34 @@ std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
   return out;
 }
 
+// scene/scene_image.h's reader: read_image's pixels, at most 4 channels kept.
+SceneImagePixels read_for_scene(const std::string& path) {
+  LoadedImage img;
+  try {
+    img = read_image(path);
+  } catch (const Error& e) {
+    throw Error(ExitCode::BadScene, e.what());
+  }
+  SceneImagePixels out;
+  out.width = img.width;
+  out.height = img.height;
+  const size_t stored = img.channels.empty() ? 0 : img.pixels.size() / (size_t(img.width) * size_t(img.height));
+  if (stored == 0) throw Error(ExitCode::BadScene, path + ": image has no channels");
+  out.channels = int(std::min<size_t>(stored, 4));
+  out.pixel_type = img.pixel_type;
+  if (size_t(out.channels) == stored) {
+    out.pixels = std::move(img.pixels);
+  } else {
+    out.pixels.resize(size_t(img.width) * img.height * out.channels);
+    for (size_t p = 0; p < size_t(img.width) * img.height; ++p)
+      for (int c = 0; c < out.channels; ++c) out.pixels[p * out.channels + c] = img.pixels[p * stored + c];
+  }
+  return out;
+}
+
 }  // namespace
+
+void install_scene_image_reader() { set_scene_image_reader(&read_for_scene); }
 
 int LoadedImage::channel(const std::string& name) const {
   const auto it = std::find(channels.begin(), channels.end(), name);

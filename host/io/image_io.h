@@ -36,6 +36,10 @@ void check_image_reader(const std::string& path);
 // Reads any image OIIO can read. Throws Error(Usage) naming the file on failure.
 LoadedImage read_image(const std::string& path);
 
+// Installs read_image as the scene layer's image reader (scene/scene_image.h): a scene's texture
+// or environment file that cannot be read is then Error(BadScene) naming the file.
+void install_scene_image_reader();
+
 // The PNG path for an EXR path: same directory and stem, ".png".
 std::string preview_path_for(const std::string& exr_path);
 
