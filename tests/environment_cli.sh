@@ -46,7 +46,7 @@ expect() {
   if [[ $ok -eq 1 ]]; then echo "ok: clpt $* -> $status"; else failures=$((failures + 1)); fi
 }
 
-r=(render "$scene" --spp 1 --width 8 --height 6 -o out.exr)
+r=(render "$scene" --spp 16 --width 8 --height 6 -o out.exr)
 # --environment FILE: usage errors (exit 2) naming the option and the file.
 expect 2 "--environment: $work/in/missing.hdr: no such file" -- "${r[@]}" --environment "$work/in/missing.hdr"
 expect 2 "--environment: $work/in/empty.hdr: the file is empty (0 bytes)" -- "${r[@]}" --environment "$work/in/empty.hdr"
@@ -96,7 +96,7 @@ else
   echo "FAIL: the environment-lit TOML scene did not render"; failures=$((failures + 1))
 fi
 rm -rf "${work:?}/out"/*
-if (cd "$work/out" && "$clpt" render "$scene" --spp 4 --width 16 --height 12 -q -o room.exr --environment "$sky" \
+if (cd "$work/out" && "$clpt" render "$scene" --spp 16 --width 16 --height 12 -q -o room.exr --environment "$sky" \
       --environment-strength 0.01 --environment-rotation 30) && [[ -f "$work/out/room.exr" ]]; then
   echo "ok: --environment on a TOML scene"
 else
