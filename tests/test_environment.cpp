@@ -362,7 +362,7 @@ TEST(EnvironmentFurnace, UniformImageUnderMisIsItsRadianceEverywhere) {
     EXPECT_EQ(off, 0) << execution_form_name(form);
     double mean = 0;
     for (float x : m) mean += x;
-    EXPECT_NEAR(mean / m.size(), 0.8, 0.01) << execution_form_name(form);
+    EXPECT_NEAR(mean / double(m.size()), 0.8, 0.01) << execution_form_name(form);
   }
 }
 
@@ -413,17 +413,18 @@ TEST(EnvironmentSun, FloorUnderASunOf1e5MatchesTheClosedFormWithoutFireflies) {
   for (const ExecutionForm form : {ExecutionForm::Megakernel, ExecutionForm::Wavefront}) {
     const Film film = render(scene, w, h, 64, 21, form);
     const std::vector<float> m = film.mean_rgb(), v = film.variance_rgb();
-    const double z = sidak_z(3 * w * h);
     for (int c = 0; c < 3; ++c) {
       const double expected = albedo / kPi * irradiance[c];
       double sum = 0, sum_var = 0;
       for (int p = 0; p < w * h; ++p) {
         sum += m[3 * p + c];
         sum_var += v[3 * p + c];
-        EXPECT_LE(std::fabs(m[3 * p + c] - expected), z * std::sqrt(v[3 * p + c]) + 1e-4 * expected)
-            << execution_form_name(form) << " pixel " << p << " channel " << c;
-        // No fireflies: each pixel's standard error at 64 spp stays below 5% of the value (with
-        // MIS the sun's light sample carries f L / pdf, nearly constant over its texels).
+        // No fireflies: each pixel's standard error at 64 spp stays below 5% of the value. (A
+        // per-pixel z test would not be valid here: about 1.5% of the light samples go to the
+        // sky and ground, whose light MIS gives to BSDF sampling, so such a sample brings nearly
+        // nothing and a pixel's mean drops by 1/64 for each: a skewed, binomial-like spread that
+        // the pixel's own variance estimate describes badly. The image mean below pools 36864
+        // samples, where the normal approximation holds.)
         EXPECT_LT(std::sqrt(v[3 * p + c]), 0.05 * expected) << execution_form_name(form) << " pixel " << p;
       }
       const double mean = sum / (w * h), se = std::sqrt(sum_var) / (w * h);
