@@ -2,7 +2,8 @@
  * direction, from an equirectangular image or one colour (docs/environment.md).
  *
  * Mapping, in clpt's +Y-up world, of a direction d given in the environment's own frame (the world
- * direction turned by -rotation_deg about +Y): the image's top row is the zenith,
+ * direction turned by -rotation_deg about +Y, i.e. its azimuth plus the rotation, which is a shift
+ * of u by rotation_deg / 360): the image's top row is the zenith,
  *   v = acos(d.y) / pi            (0 at the top row's top edge, 1 at the bottom row's bottom edge)
  *   u = 0.5 + atan2(d.z, d.x) / (2 pi)
  * so the image's horizontal centre looks along +X, u = 0.25 along -Z and u = 0.75 along +Z. The
@@ -38,42 +39,68 @@
 
 #if CLPT_HAS_ENVIRONMENT
 
+/* atan2 and the angles of a texel without the library's atan2, acos, sin and cos: those are calls
+ * that PoCL cannot vectorise across work-items ("instruction cannot be vectorized": with them the
+ * image kernels ran 20x slower), as for unit_circle (maths.cl). Likewise no pair of operations of
+ * one shape on two values (fabs of both arguments, a rotation's two rows): PoCL runs LLVM's SLP
+ * vectoriser first, which packs such pairs into <2 x float>, and a work-item loop holding a
+ * vector-typed value is not vectorised ("instruction return type cannot be vectorized"). atan on [0, 1]:
+ * above tan(pi/12), atan t = pi/6 + atan((t sqrt 3 - 1) / (t + sqrt 3)), which brings the argument
+ * to [0, tan(pi/12)] = [0, 0.268]; there the Taylor series to t^23, whose first omitted term is
+ * below 3e-16. Branch-free (selects). */
+CLPT_INLINE real environment_atan01(real t) {
+  const real tan_pi_12 = (real)0.2679491924311227;
+  const real sqrt3 = (real)1.7320508075688772;
+  const bool reduce = t > tan_pi_12;
+  const real x = reduce ? (t * sqrt3 - (real)1) / (t + sqrt3) : t;
+  const real x2 = x * x;
+  const real series =
+      x * ((real)1 + x2 * ((real)-1 / 3 + x2 * ((real)1 / 5 + x2 * ((real)-1 / 7 + x2 * ((real)1 / 9 +
+      x2 * ((real)-1 / 11 + x2 * ((real)1 / 13 + x2 * ((real)-1 / 15 + x2 * ((real)1 / 17 + x2 * ((real)-1 / 19 +
+      x2 * ((real)1 / 21 + x2 * ((real)-1 / 23))))))))))));
+  return reduce ? CLPT_PI / (real)6 + series : series;
+}
+
+/* atan2(y, x) in [-pi, pi]; 0 at the origin. */
+CLPT_INLINE real environment_atan2(real y, real x) {
+  /* |x| and |y| and then the larger and the smaller, each formed differently: two operations of
+   * one shape side by side are what LLVM's SLP vectoriser packs into a <2 x float> (see above). */
+  const real ax = fabs(x), ay = y < (real)0 ? -y : y;
+  const bool steep = ay > ax;
+  const real big = steep ? ay : ax, small = (ax + ay) - big;
+  const real t = big > (real)0 ? small / big : (real)0;
+  const real a0 = environment_atan01(t);
+  const real a1 = steep ? CLPT_PI * (real)0.5f - a0 : a0;
+  const real a2 = x < (real)0 ? CLPT_PI - a1 : a1;
+  return y < (real)0 ? -a2 : a2;
+}
+
 CLPT_INLINE __global const float* environment_words(__global const GpuEnvironment* env) {
   return (__global const float*)env;
 }
 
-/* A world direction in the environment's frame: R_y(-rotation) d. */
-CLPT_INLINE Vec3 environment_local(__global const GpuEnvironment* env, Vec3 d) {
-  const real c = (real)env->cos_rotation, s = (real)env->sin_rotation;
-  return v3(c * d.x - s * d.z, d.y, s * d.x + c * d.z);
-}
-
-/* An environment-frame direction in the world: R_y(rotation) l. */
-CLPT_INLINE Vec3 environment_world(__global const GpuEnvironment* env, Vec3 l) {
-  const real c = (real)env->cos_rotation, s = (real)env->sin_rotation;
-  return v3(c * l.x + s * l.z, l.y, c * l.z - s * l.x);
-}
-
 /* The texel (row-major index) that world direction d looks at, and sin(theta) there. */
 CLPT_INLINE uint environment_texel(__global const GpuEnvironment* env, Vec3 d, real* sin_theta) {
-  const Vec3 l = environment_local(env, d);
-  const real length2 = v3_dot(l, l);
-  const real y0 = length2 > (real)0 ? l.y / clpt_sqrt(length2) : (real)1;
+  const real length2 = v3_dot(d, d);
+  const real y0 = length2 > (real)0 ? d.y / clpt_sqrt(length2) : (real)1;
   const real y = y0 > (real)1 ? (real)1 : (y0 < (real)-1 ? (real)-1 : y0);
-  const real v = acos(y) * ((real)1 / CLPT_PI);
-  const real u0 = (real)0.5f + atan2(l.z, l.x) * ((real)0.5f / CLPT_PI);
-  const real u = u0 > (real)0 ? u0 : (real)0;
+  const real s2 = (real)1 - y * y;
+  const real s = clpt_sqrt(s2 > (real)0 ? s2 : (real)0);
+  const real v = environment_atan2(s, y) * ((real)1 / CLPT_PI); /* acos(y) / pi */
+  /* The rotation about +Y is a shift of u: wrapped into [0, 1). */
+  const real u0 = (real)0.5f + environment_atan2(d.z, d.x) * ((real)0.5f / CLPT_PI) + (real)env->rotation_turns;
+  const real u1 = u0 - floor(u0);
+  const real u = u1 > (real)0 ? u1 : (real)0;
   const uint width = env->width, height = env->height;
   const uint column = min((uint)(u * (real)width), width - 1u);
   const uint row = min((uint)(v * (real)height), height - 1u);
-  const real s2 = (real)1 - y * y;
-  *sin_theta = clpt_sqrt(s2 > (real)0 ? s2 : (real)0);
+  *sin_theta = s;
   return row * width + column;
 }
 
 CLPT_INLINE Vec3 environment_texel_radiance(__global const GpuEnvironment* env, uint texel) {
   __global const float* rgb = environment_words(env) + env->texel_offset + 3u * texel;
-  return v3((real)rgb[0], (real)rgb[1], (real)rgb[2]);
+  return v3((real)rgb[0], (real)CLPT_Y_APART(rgb), (real)rgb[2]); /* y apart: as above */
 }
 
 /* Radiance arriving along -d, i.e. seen looking along world direction d. */
@@ -136,13 +163,16 @@ CLPT_INLINE EnvironmentSample environment_sample(__global const GpuEnvironment* 
       environment_alias_draw(words + env->column_alias_offset + 2u * row * width, width, u.u1, &column_rest);
   const real uu = ((real)column + (real)column_rest) / (real)width;
   const real vv = ((real)row + (real)row_rest) / (real)height;
-  const real phi = (real)2 * CLPT_PI * (uu - (real)0.5f);
-  const real theta = CLPT_PI * vv;
-  const real sin_theta = sin(theta);
-  const Vec3 in_frame = v3(sin_theta * cos(phi), cos(theta), sin_theta * sin(phi));
+  /* In the world, phi = 2 pi (uu - rotation_turns - 1/2): (cos, sin) = -unit_circle(that + 1/2),
+   * its argument wrapped into [0, 1); theta = pi vv = 2 pi (vv / 2). */
+  const real turned0 = uu - (real)env->rotation_turns;
+  const Float2 azimuth = unit_circle(turned0 - floor(turned0));
+  const Float2 polar = unit_circle(vv * (real)0.5f);
+  const real sin_theta = polar.y > (real)0 ? polar.y : (real)0;
+  const Vec3 in_frame = v3(-sin_theta * azimuth.x, polar.x, -sin_theta * azimuth.y);
   const uint texel = row * width + column;
   EnvironmentSample s;
-  s.direction = environment_world(env, in_frame);
+  s.direction = in_frame;
   s.radiance = environment_texel_radiance(env, texel);
   s.pdf = environment_solid_angle_pdf((real)words[env->density_offset + texel], sin_theta);
   return s;

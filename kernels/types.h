@@ -225,13 +225,13 @@ typedef struct GpuEnvironment {
   float pick_probability;    /* nee: probability that a light sample is the environment's (1 without
                                 other lights, else 1/2); 0 for NONE */
   float radiance[3];         /* CONSTANT: colour x strength (what a CLPT_HAS_ENVIRONMENT=2 kernel reads) */
-  float cos_rotation;        /* rotation_deg about +Y: world direction = R_y(rotation) environment direction */
-  float sin_rotation;
+  float rotation_turns;      /* rotation_deg / 360: about +Y the world direction of azimuth phi looks at the
+                                environment's azimuth phi + 2 pi rotation_turns (u shifted by it) */
   clpt_u32 texel_offset;     /* word index of texel 0's R (RGB floats, row-major from the top row) */
   clpt_u32 density_offset;   /* word index of texel 0's density in (u, v) */
   clpt_u32 row_alias_offset; /* word index of the rows' alias table: height (threshold, alias) pairs */
   clpt_u32 column_alias_offset; /* word index of row 0's alias table: width pairs per row */
-  float pad[3];
+  float pad[4];
 } GpuEnvironment;
 
 /* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
@@ -321,8 +321,7 @@ typedef struct GpuPixelPass {
   X(GpuEnvironment, height)                                                                       \
   X(GpuEnvironment, pick_probability)                                                             \
   X(GpuEnvironment, radiance)                                                                     \
-  X(GpuEnvironment, cos_rotation)                                                                 \
-  X(GpuEnvironment, sin_rotation)                                                                 \
+  X(GpuEnvironment, rotation_turns)                                                               \
   X(GpuEnvironment, texel_offset)                                                                 \
   X(GpuEnvironment, density_offset)                                                               \
   X(GpuEnvironment, row_alias_offset)                                                             \

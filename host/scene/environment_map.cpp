@@ -129,15 +129,12 @@ EnvironmentDistribution environment_distribution(int width, int height, const st
 std::vector<float> environment_device_data(const std::optional<Environment>& environment, bool other_lights) {
   GpuEnvironment header{};
   header.kind = CLPT_ENVIRONMENT_NONE;
-  header.cos_rotation = 1;
-  header.sin_rotation = 0;
   int width = 1, height = 1;
   std::vector<float> rgb(3, 0.0f);
   if (environment) {
     const Environment& e = *environment;
-    const double a = e.rotation_deg * kPi / 180;
-    header.cos_rotation = static_cast<float>(std::cos(a));
-    header.sin_rotation = static_cast<float>(std::sin(a));
+    const double turns = e.rotation_deg / 360;
+    header.rotation_turns = static_cast<float>(turns - std::floor(turns));
     if (e.file.empty()) {
       header.kind = CLPT_ENVIRONMENT_CONSTANT;
       for (int c = 0; c < 3; ++c) {
