@@ -32,24 +32,27 @@
 #define CLPT_HAS_TRIANGLE_LIGHTS 1
 #endif
 
-/* Every buffer that holds geometry (and the lights), as the kernels receive them. */
+/* Every buffer that holds geometry (and the lights, and the environment), as the kernels receive them. */
 typedef struct SceneBuffers {
   __global const GpuSphere* spheres;
   __global const GpuLight* lights;
   __global const GpuBvhNode* nodes;
   __global const GpuTriangle* triangles;
   __global const GpuTriangleShading* triangle_shading;
+  __global const GpuEnvironment* environment; /* header and data (types.h), environment.cl */
 } SceneBuffers;
 
 CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __global const GpuLight* lights,
                                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
-                                       __global const GpuTriangleShading* triangle_shading) {
+                                       __global const GpuTriangleShading* triangle_shading,
+                                       __global const GpuEnvironment* environment) {
   SceneBuffers s;
   s.spheres = spheres;
   s.lights = lights;
   s.nodes = nodes;
   s.triangles = triangles;
   s.triangle_shading = triangle_shading;
+  s.environment = environment;
   return s;
 }
 

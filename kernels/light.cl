@@ -44,8 +44,15 @@
 #define CLPT_HAS_DIRECTIONAL_LIGHTS CLPT_PUNCTUAL_DEFAULT
 #endif
 #define CLPT_HAS_PUNCTUAL_LIGHTS (CLPT_HAS_POINT_LIGHTS || CLPT_HAS_SPOT_LIGHTS || CLPT_HAS_DIRECTIONAL_LIGHTS)
-/* Lights picked by power from the alias table (else uniformly over the sphere caps). */
-#define CLPT_LIGHT_PICK_BY_POWER (CLPT_HAS_TRIANGLE_LIGHTS || CLPT_HAS_PUNCTUAL_LIGHTS)
+/* The environment light (environment.cl): 1 an image (sampled by nee), 2 a constant colour (seen
+ * by escaping rays only); named likewise only when the scene has one. */
+#ifndef CLPT_HAS_ENVIRONMENT
+#define CLPT_HAS_ENVIRONMENT CLPT_PUNCTUAL_DEFAULT
+#endif
+/* Lights picked by power from the alias table (else uniformly over the sphere caps). A sampled
+ * environment needs the alias pick's LightSample (emission, target); the host fills the table
+ * uniformly when there are only sphere lights, so their pick is the same. */
+#define CLPT_LIGHT_PICK_BY_POWER (CLPT_HAS_TRIANGLE_LIGHTS || CLPT_HAS_PUNCTUAL_LIGHTS || CLPT_HAS_ENVIRONMENT == 1)
 /* How far a directional light's shadow ray looks, world units: below CLPT_NO_HIT (maths.cl), and
  * small enough that its square stays a finite float (next_event forms the ray's length). */
 #define CLPT_DIRECTIONAL_DISTANCE ((real)1e15f)

@@ -16,6 +16,9 @@
  *    shadow ray alone (weight 1, no BSDF-sampled counterpart). Emitting triangles
  *    are lights like the spheres' caps (CLPT_HAS_TRIANGLE_LIGHTS, light.cl); without that
  *    feature the scene has none.
+ *  - either: a ray that escapes sees the environment (CLPT_HAS_ENVIRONMENT, environment.cl), else
+ *    black; under nee an environment image is a light like the others (sampled, and an escaping
+ *    BSDF-sampled ray weighted against its density).
  * Segment `bounce` = 0 is the camera ray; at most max_bounces scattering events follow, and
  * emission found at the end of the last segment still counts. A shadow ray from a vertex that may
  * scatter is the same segment as the BSDF ray it competes with, so both estimators sum the same
@@ -27,7 +30,8 @@
  * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_PBR (bsdf_pbr.cl), CLPT_HAS_PBR_TRANSMISSION and
  * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
  * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
- * CLPT_HAS_BVH (traversal, bvh.cl) and CLPT_HAS_TRIANGLE_LIGHTS (light.cl) compile those in;
+ * CLPT_HAS_BVH (traversal, bvh.cl), CLPT_HAS_TRIANGLE_LIGHTS (light.cl) and CLPT_HAS_ENVIRONMENT
+ * (environment.cl) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
@@ -43,6 +47,7 @@
 #include "bsdf.cl"
 #include "bsdf_pbr.cl"
 #include "light.cl"
+#include "environment.cl"
 
 #ifndef CLPT_HAS_PHONG
 #define CLPT_HAS_PHONG 1
@@ -377,7 +382,10 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
    * return: a branch here would stop PoCL's vectoriser). */
   const Uniform4 u = sampler_uniform4(rng_key_of(params), params->sampler, path->pixel, path->sample,
                                        CLPT_DIM_LIGHT + path->bounce);
-  const LightSample ls = light_sample(scene, params->light_count, surface->point, u);
+  LightSample ls = light_sample(scene, params->light_count, surface->point, u);
+#if CLPT_HAS_ENVIRONMENT == 1
+  environment_light_choice(scene->environment, surface->point, u, &ls); /* or the environment's */
+#endif
   real bsdf_pdf;
   const Vec3 f_cos = material_eval(m, path->direction, surface->normal, ls.direction, &bsdf_pdf);
   const int skip = index >= 0 && v3_dot(ls.direction, surface->normal) > (real)0 ? index : -1;
@@ -431,7 +439,13 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   const real mis = mis_power(ls.pdf, bsdf_pdf);
 #endif
   const real weight = visible ? mis / ls.pdf : (real)0;
+#if CLPT_HAS_ENVIRONMENT
+  /* A scene lit by its environment alone has an empty light list, whose placeholder entry's
+   * sample may be NaN where it is not visible: selected away, not multiplied by 0. */
+  return v3_select(visible, v3_scale(v3_mul(f_cos, emission), weight), v3_splat((real)0));
+#else
   return v3_scale(v3_mul(f_cos, emission), weight);
+#endif
 }
 
 /* Field-wise choice between two path states (a select of the whole struct would stop PoCL's
@@ -475,7 +489,7 @@ CLPT_INLINE Uniform4 scatter_uniforms_of(const GpuRenderParams* params, Uniform4
   return u;
 }
 
-/* One shading event: a miss ends the path (black background); an emitter adds its emission
+/* One shading event: a miss ends the path (black, or the environment); an emitter adds its emission
  * (MIS-weighted under nee) and ends it (emitters do not reflect); past max_bounces the path ends;
  * otherwise, under nee, a shadow ray adds the light it finds, and the material scatters the path.
  * Written as selects over the cases, not branches, so that PoCL vectorises it.
@@ -544,6 +558,9 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
                                                         surface.triangle.geometric, path->direction, t);
     light_pdf = surface.on_triangle ? triangle_pdf : light_pdf;
 #endif
+#if CLPT_HAS_ENVIRONMENT == 1
+    light_pdf *= (real)1 - (real)scene->environment->pick_probability; /* the list was chosen */
+#endif
     const real hit_weight = mis_power(path->bsdf_pdf, light_pdf); /* likewise formed for every path */
     emitted = v3_scale(emitted, path->bsdf_pdf > (real)0 ? hit_weight : (real)1);
   }
@@ -555,6 +572,20 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   const bool emits = emitter;
 #endif
   path->radiance = v3_select(emits, v3_add(path->radiance, emitted), path->radiance);
+#if CLPT_HAS_ENVIRONMENT
+  /* An escaping ray sees the environment; under nee an image's is weighted against its light
+   * sample's density, as an emitter hit is above (constant: no light sample, weight 1). */
+  Vec3 background = v3_mul(path->throughput, environment_radiance(scene->environment, path->direction));
+#if CLPT_HAS_ENVIRONMENT == 1 && CLPT_NEE_COMPILED
+  if (CLPT_NEE_ON(params)) {
+    const real environment_light_pdf =
+        (real)scene->environment->pick_probability * environment_pdf(scene->environment, path->direction);
+    const real environment_weight = mis_power(path->bsdf_pdf, environment_light_pdf);
+    background = v3_scale(background, path->bsdf_pdf > (real)0 ? environment_weight : (real)1);
+  }
+#endif
+  path->radiance = v3_select(missed, v3_add(path->radiance, background), path->radiance);
+#endif
 
   const Uniform4 u = scatter_uniforms_of(params, draw, path->bounce);
   Vec3 weight;

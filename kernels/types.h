@@ -207,6 +207,33 @@ typedef struct GpuSampleSlot {
   clpt_u32 sample_begin; /* half 1's samples: from 2^31 (CLPT_SAMPLE_STREAM_BIT) */
 } GpuSampleSlot;
 
+/* The environment light (kernels/environment.cl, docs/environment.md): radiance arriving from
+ * infinitely far along each direction, an equirectangular image or one colour. One buffer holds
+ * this 64-byte header and then its data as 32-bit words (offsets below count words from the
+ * buffer's start): the texels' RGB radiance (strength included), row 0 the zenith; each texel's
+ * density in (u, v), f / mean(f) with f = luminance x sin(theta) at the row's centre; the rows'
+ * alias table (threshold float, alias uint) over the rows' sums of f; each row's alias table over
+ * its texels' f. Built on the host in double (scene/environment_map.h). A scene without an
+ * environment uploads a header of kind NONE over one black texel (read only by the generic kernel). */
+#define CLPT_ENVIRONMENT_NONE 0u
+#define CLPT_ENVIRONMENT_IMAGE 1u
+#define CLPT_ENVIRONMENT_CONSTANT 2u
+typedef struct GpuEnvironment {
+  clpt_u32 kind;             /* CLPT_ENVIRONMENT_*: what the scene has (a constant is packed as a 1x1 image too) */
+  clpt_u32 width;            /* texels per row (u) */
+  clpt_u32 height;           /* rows (v) */
+  float pick_probability;    /* nee: probability that a light sample is the environment's (1 without
+                                other lights, else 1/2); 0 for NONE */
+  float radiance[3];         /* CONSTANT: colour x strength (what a CLPT_HAS_ENVIRONMENT=2 kernel reads) */
+  float rotation_turns;      /* rotation_deg / 360: about +Y the world direction of azimuth phi looks at the
+                                environment's azimuth phi + 2 pi rotation_turns (u shifted by it) */
+  clpt_u32 texel_offset;     /* word index of texel 0's R (RGB floats, row-major from the top row) */
+  clpt_u32 density_offset;   /* word index of texel 0's density in (u, v) */
+  clpt_u32 row_alias_offset; /* word index of the rows' alias table: height (threshold, alias) pairs */
+  clpt_u32 column_alias_offset; /* word index of row 0's alias table: width pairs per row */
+  float pad[4];
+} GpuEnvironment;
+
 /* Per-pixel statistics of one pass, written (not accumulated) by the device: 32 bytes. The
  * host adds them into double-precision sums, so no float sum ever spans more than one pass. */
 typedef struct GpuPixelPass {
@@ -289,12 +316,22 @@ typedef struct GpuPixelPass {
   X(GpuLight, spot_scale)                                                                         \
   X(GpuLight, intensity)                                                                          \
   X(GpuLight, spot_offset)                                                                        \
+  X(GpuEnvironment, kind)                                                                         \
+  X(GpuEnvironment, width)                                                                        \
+  X(GpuEnvironment, height)                                                                       \
+  X(GpuEnvironment, pick_probability)                                                             \
+  X(GpuEnvironment, radiance)                                                                     \
+  X(GpuEnvironment, rotation_turns)                                                               \
+  X(GpuEnvironment, texel_offset)                                                                 \
+  X(GpuEnvironment, density_offset)                                                               \
+  X(GpuEnvironment, row_alias_offset)                                                             \
+  X(GpuEnvironment, column_alias_offset)                                                          \
   X(GpuPixelPass, sum)                                                                            \
   X(GpuPixelPass, valid_samples)                                                                  \
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuPixelPass)
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the
  * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
@@ -318,6 +355,7 @@ CLPT_CHECK_SIZE(GpuLight, 80)
 CLPT_CHECK_SIZE(GpuCamera, 48)
 CLPT_CHECK_SIZE(GpuRenderParams, 120)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)
+CLPT_CHECK_SIZE(GpuEnvironment, 64)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
 #undef CLPT_CHECK_SIZE
 

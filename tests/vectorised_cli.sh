@@ -68,6 +68,13 @@ done
 if [[ $slow_gathers == 0 ]]; then
   check_vectorised diffuse.book.robust.roulette scenes/diffuse.toml --rr-from 3
 fi
+# The environment light's image kernels (kernels/environment.cl): the library's acos/atan2/sin/cos
+# and SLP-paired pairs once kept them scalar, 20x slower (docs/environment.md, "What it costs").
+if [[ $slow_gathers == 0 ]]; then
+  for form in megakernel wavefront; do
+    check_vectorised environment.nee.robust.$form scenes/environment.toml --estimator nee --form "$form"
+  done
+fi
 # --cpu-vector-bits must reach PoCL's vectoriser (host/cl/pocl_vectoriser.h): with 512 every
 # vectorised loop of the kernels is 16 work-items wide, with 256 (LLVM's cost model) none is, in
 # both forms, with a float and the double preset. Only on an AVX-512 CPU (elsewhere clpt refuses

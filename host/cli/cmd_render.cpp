@@ -14,6 +14,7 @@
 #include "render/limits.h"
 #include "render/rank_group.h"
 #include "render/render_session.h"
+#include "scene/environment.h"
 #include "scene/precision_range.h"
 #include "scene/scene_loader.h"
 #include "tools/vector_width.h"
@@ -45,6 +46,9 @@ struct RenderOptions {
   std::optional<std::string> intersection;
   std::optional<std::string> estimator, light_sampling;
   std::optional<int> rr_from;
+  EnvironmentOverrides environment;  // --environment, --environment-strength, --environment-rotation
+  double exposure_ev = 0;            // --exposure (the PNG preview only)
+  std::string tonemap = "clamp";     // --tonemap (the PNG preview only)
   bool quiet = false;
   bool progress = false;
   bool explain = false;
@@ -144,6 +148,8 @@ void write_outputs(const RenderOptions& o, const std::string& path, const Film& 
     info.sampler = sampler_name(scene.settings.sampler);
     info.adaptive = o.adaptive;
     info.max_bounces = uint64_t(scene.settings.max_bounces);
+    info.preview_exposure = o.exposure_ev;
+    info.preview_tonemap = o.tonemap;
     info.dropped_samples = report.dropped;
     info.interrupted = report.interrupted;
     if (report.estimate.valid) info.error_estimate = report.estimate.relative_rmse_upper;
@@ -227,6 +233,7 @@ int run(const RenderOptions& o) {
   const Clock::time_point load_start = Clock::now();
   Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
+  apply_environment_overrides(scene, o.environment);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
   times.scene_load = seconds_since(load_start);
 
@@ -335,6 +342,20 @@ std::function<int()> add_render_command(CLI::App& app) {
   cmd->add_option("--light-sampling", o->light_sampling,
                   "nee: sample the visible cap of each light (default) or the whole sphere")
       ->check(CLI::IsMember({"cap", "sphere"}));
+  cmd->add_option("--environment", o->environment.file,
+                  "Light the scene (TOML or glTF) with this equirectangular image (EXR, HDR, PNG, ...; replaces the "
+                  "scene's [environment]; docs/environment.md)");
+  cmd->add_option("--environment-strength", o->environment.strength,
+                  "Multiply the environment's radiance by S (default: the scene's, else 1)");
+  cmd->add_option("--environment-rotation", o->environment.rotation_deg,
+                  "Turn the environment DEG degrees about +Y (right-handed: 90 moves what was seen along +X to -Z)");
+  cmd->add_option("--exposure", o->exposure_ev, "PNG preview: multiply the film by 2^EV first (the EXR stays linear)")
+      ->check(CLI::Range(-64.0, 64.0));
+  cmd->add_option("--tonemap", o->tonemap,
+                  "PNG preview's tone curve: clamp (the book's, default) or aces (Narkowicz's ACES filmic fit); "
+                  "then x^(1/2.2)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"clamp", "aces"}));
   cmd->add_flag("-q,--quiet", o->quiet, "Print nothing but errors");
   cmd->add_flag("--progress", o->progress, "Show the progress line even when stderr is not a terminal");
   cmd->add_flag("--explain", o->explain,

@@ -100,15 +100,6 @@ ImageToWrite rgb8_image(int width, int height, const std::vector<unsigned char>&
   return image;
 }
 
-std::vector<unsigned char> tone_map_preview(const std::vector<float>& rgb) {
-  std::vector<unsigned char> out(rgb.size());
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
-    out[i] = static_cast<unsigned char>(std::lround(std::pow(v, 1.0f / 2.2f) * 255.0f));
-  }
-  return out;
-}
-
 // scene/scene_image.h's reader: read_image's pixels, at most 4 channels kept.
 SceneImagePixels read_for_scene(const std::string& path) {
   LoadedImage img;
@@ -148,7 +139,7 @@ std::string preview_path_for(const std::string& exr_path) {
 }
 
 std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
-                                 const std::string& exr_compression) {
+                                 const std::string& exr_compression, const PreviewSettings& preview_settings) {
   const int w = film.width(), h = film.height();
   const std::vector<float> mean = film.mean_rgb();
   const std::vector<float> variance = film.variance_rgb();
@@ -168,7 +159,7 @@ std::string write_render_outputs(const std::string& exr_path, const Film& film, 
   exr.metadata = metadata;
 
   const std::string png_path = preview_path_for(exr_path);
-  const std::vector<unsigned char> preview = tone_map_preview(mean);
+  const std::vector<unsigned char> preview = tone_map_preview(mean, preview_settings);
   const ImageToWrite png = rgb8_image(w, h, preview);
 
   // The two files are compressed at once (each is single-threaded zlib), and both are complete

@@ -6,7 +6,8 @@
 //
 // A render writes OUT.exr (linear float R, G, B and the variance of each pixel mean in
 // variance.R, variance.G, variance.B, plus clpt:* metadata) and OUT.png beside it (8-bit
-// preview: clamp to [0, 1], then x^(1/2.2), as the book's renderer does). Both are written to a
+// preview: clamp to [0, 1], then x^(1/2.2), as the book's renderer does; --exposure and --tonemap
+// change it, io/tone_map.h). Both are written to a
 // temporary name in the same directory and renamed, so a failed or interrupted run never leaves
 // a half-written file under the requested name.
 #pragma once
@@ -15,16 +16,17 @@
 #include <vector>
 
 #include "io/image_codec.h"
+#include "io/tone_map.h"
 #include "render/film.h"
 
 namespace clpt {
 
 // Writes the EXR at `exr_path` (channels and metadata as io/render_file.h lays them down; call
 // write_render_file there) and the PNG preview with the same stem (the two at once), the EXR with
-// `exr_compression` (io/exr_writer.h, exr_compression_names). Returns the PNG path. Throws
-// Error(OutputError) naming the file.
+// `exr_compression` (io/exr_writer.h, exr_compression_names), the PNG as `preview` says
+// (io/tone_map.h). Returns the PNG path. Throws Error(OutputError) naming the file.
 std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
-                                 const std::string& exr_compression = "zip");
+                                 const std::string& exr_compression = "zip", const PreviewSettings& preview = {});
 
 // Writes an 8-bit RGB PNG (or any format the extension names, through OpenImageIO), atomically.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);

@@ -44,6 +44,8 @@ constexpr const char* kKernelBuild = "clpt:kernel_build";
 constexpr const char* kFirstLaunchS = "clpt:first_launch_s";
 constexpr const char* kOutputS = "clpt:output_s";
 constexpr const char* kElapsedS = "clpt:elapsed_s";
+constexpr const char* kPreviewExposure = "clpt:preview_exposure";
+constexpr const char* kPreviewTonemap = "clpt:preview_tonemap";
 
 std::string text(const ImageMetadata& m, const char* key) {
   const auto it = m.find(key);
@@ -139,6 +141,8 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   put_real(kFirstLaunchS, info.first_launch_s);
   put_real(kOutputS, info.output_s);
   put_real(kElapsedS, info.elapsed_s);
+  put_real(kPreviewExposure, info.preview_exposure);
+  if (!info.preview_tonemap.empty()) m[kPreviewTonemap] = info.preview_tonemap;
   return m;
 }
 
@@ -173,6 +177,8 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.kernel_build_s = real(m, kKernelBuildS);
   info.kernel_build = text(m, kKernelBuild);
   info.first_launch_s = real(m, kFirstLaunchS);
+  info.preview_exposure = real(m, kPreviewExposure);
+  info.preview_tonemap = text(m, kPreviewTonemap);
   info.output_s = real(m, kOutputS);
   info.elapsed_s = real(m, kElapsedS);
   return info;
@@ -209,7 +215,10 @@ RenderFile read_render_file(const std::string& path, const std::string& what_giv
 
 std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info,
                               const std::string& exr_compression) {
-  return write_render_outputs(exr_path, film, render_metadata(info), exr_compression);
+  PreviewSettings preview;
+  preview.exposure_ev = info.preview_exposure.value_or(0.0);
+  preview.curve = parse_tone_curve(info.preview_tonemap).value_or(ToneCurve::Clamp);
+  return write_render_outputs(exr_path, film, render_metadata(info), exr_compression, preview);
 }
 
 }  // namespace clpt

@@ -59,6 +59,9 @@ struct RenderFileInfo {
   // clpt:elapsed_s, from the command's start to when this file's metadata was made: every part
   // above and the rest, but not the writing of this file and its PNG (the summary's wall has it).
   std::optional<double> elapsed_s;
+  // How the PNG preview beside the EXR was made (io/tone_map.h); the EXR itself is linear.
+  std::optional<double> preview_exposure;  // clpt:preview_exposure, --exposure in EV (stops)
+  std::string preview_tonemap;             // clpt:preview_tonemap: clamp | aces
 };
 
 ImageMetadata render_metadata(const RenderFileInfo& info);
@@ -76,6 +79,7 @@ RenderFile read_render_file(const std::string& path, const std::string& what = "
 
 // Writes the EXR at `exr_path` (compressed with `exr_compression`, io/exr_writer.h) and its PNG
 // preview (image_io.h). Returns the PNG's path.
+// The preview follows info.preview_exposure and info.preview_tonemap (unset: the book's clamp).
 std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info,
                               const std::string& exr_compression = "zip");
 

@@ -28,6 +28,14 @@ Intersection default_intersection(Precision precision) {
   return precision == Precision::Fast ? Intersection::Surface : Intersection::Robust;
 }
 
+const char* environment_feature_name(EnvironmentFeature feature) {
+  switch (feature) {
+    case EnvironmentFeature::Image: return "image";
+    case EnvironmentFeature::Constant: return "constant";
+    default: return "none";
+  }
+}
+
 const char* estimator_name(Estimator estimator) { return estimator == Estimator::Nee ? "nee" : "book"; }
 
 std::optional<Estimator> parse_estimator(const std::string& name) {
@@ -200,6 +208,9 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.directional_lights |= l.type == LightType::Directional;
   }
   f.orthographic = scene.camera.projection == Projection::Orthographic;
+  f.environment = !scene.environment              ? EnvironmentFeature::None
+                  : scene.environment->file.empty() ? EnvironmentFeature::Constant
+                                                    : EnvironmentFeature::Image;
   f.spheres_in_bvh = spheres_in_hierarchy(scene);
   const std::vector<bool> in_loop = loop_spheres(scene);
   f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
@@ -278,6 +289,8 @@ std::string kernel_build_options(const KernelFeatures& features) {
     if (features.spot_lights) o << " -DCLPT_HAS_SPOT_LIGHTS=1";
     if (features.directional_lights) o << " -DCLPT_HAS_DIRECTIONAL_LIGHTS=1";
     if (features.orthographic) o << " -DCLPT_HAS_ORTHOGRAPHIC=1";
+    if (features.environment != EnvironmentFeature::None)
+      o << " -DCLPT_HAS_ENVIRONMENT=" << static_cast<int>(features.environment);
   }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
@@ -367,6 +380,14 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   light_line("point", features.point_lights);
   light_line("spot", features.spot_lights);
   light_line("directional", features.directional_lights);
+  o << "  environment: "
+    << (features.generic ? "an image, sampled by nee (generic kernel; a scene without one reads a black texel)"
+        : features.environment == EnvironmentFeature::Image
+            ? "an image (seen by escaping rays; nee samples it by luminance x sin(theta), MIS with BSDF sampling)"
+        : features.environment == EnvironmentFeature::Constant
+            ? "a constant colour (seen by escaping rays; not light-sampled: BSDF sampling is already ideal for it)"
+            : "left out (none in the scene: escaping rays are black)")
+    << "\n";
   o << "  camera: "
     << (features.generic ? "perspective or orthographic at run time (generic kernel)"
         : features.orthographic ? "orthographic compiled (the scene's camera is orthographic)"

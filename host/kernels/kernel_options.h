@@ -106,6 +106,14 @@ std::optional<SphereReads> parse_sphere_reads(const std::string& name);
 // Whether a kernel for this device reads the hit sphere by selects.
 bool sphere_reads_by_select_for(SphereReads reads, const DeviceInfo& device, Precision precision);
 
+// The environment light a kernel compiles (CLPT_HAS_ENVIRONMENT; docs/environment.md):
+//   none:     escaping rays are black, no environment code
+//   image:    an equirectangular image, looked up by escaping rays and sampled by nee (MIS)
+//   constant: one colour, looked up by escaping rays only (BSDF sampling alone is already
+//             proportional to a uniform light's integrand): no image reads, no light sample
+enum class EnvironmentFeature { None = 0, Image = 1, Constant = 2 };
+const char* environment_feature_name(EnvironmentFeature feature);
+
 struct KernelFeatures {
   Precision precision = Precision::Robust;  // CLPT_PRECISION (always fixed: it changes types)
   std::optional<Intersection> intersection;  // CLPT_INTERSECT; unset: default_intersection(precision)
@@ -129,6 +137,9 @@ struct KernelFeatures {
   bool spot_lights = true;         // CLPT_HAS_SPOT_LIGHTS
   bool directional_lights = true;  // CLPT_HAS_DIRECTIONAL_LIGHTS
   bool orthographic = true;        // CLPT_HAS_ORTHOGRAPHIC: the camera's projection
+  // CLPT_HAS_ENVIRONMENT (kernels/environment.cl): what escaping rays see. Named only when not
+  // None (absent: none in a specialised kernel; the generic kernel compiles Image).
+  EnvironmentFeature environment = EnvironmentFeature::Image;
   bool punctual_lights() const { return point_lights || spot_lights || directional_lights; }
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
   // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks

@@ -93,6 +93,15 @@ uint64_t light_entry_bound(const Scene& scene) {
   return n + scene.lights.size();
 }
 
+uint64_t environment_bytes_of(const Scene& scene) {
+  if (!scene.environment) return 0;
+  const uint64_t texels = scene.environment->file.empty()
+                              ? 1
+                              : uint64_t(scene.environment->width) * uint64_t(scene.environment->height);
+  // RGB, the density and a (threshold, alias) pair per texel; a pair per row.
+  return sizeof(GpuEnvironment) + texels * 6 * 4 + uint64_t(scene.environment->height) * 8;
+}
+
 uint64_t triangle_count(const Scene& scene) {
   uint64_t n = 0;
   for (const TriangleMesh& m : scene.meshes) n += m.triangles.size();
@@ -101,11 +110,12 @@ uint64_t triangle_count(const Scene& scene) {
 
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device, uint64_t triangles,
-                                      uint64_t lights) {
+                                      uint64_t lights, uint64_t environment_bytes) {
   MemoryEstimate e;
   const uint64_t budget = launch_buffer_budget(device);
   add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
   add_buffer(e, lights * sizeof(GpuLight), "lights");
+  add_buffer(e, environment_bytes, "environment");
   if (triangles > 0) {
     static_assert(sizeof(GpuTriangle) + sizeof(GpuTriangleShading) + 2 * sizeof(GpuBvhNode) == kDeviceBytesPerTriangle,
                   "kDeviceBytesPerTriangle states the layouts of kernels/types.h");

@@ -69,10 +69,14 @@ struct MemoryEstimate {
 // largest) and job results of 16 B per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 // `triangles` adds the triangle, triangle shading and hierarchy node buffers (the nodes counted at
-// their bound of two per primitive, spheres included); `lights` the light list (48 B each).
+// their bound of two per primitive, spheres included); `lights` the light list (48 B each);
+// `environment_bytes` the environment light's buffer (environment_bytes_of).
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device,
-                                      uint64_t triangles = 0, uint64_t lights = 0);
+                                      uint64_t triangles = 0, uint64_t lights = 0, uint64_t environment_bytes = 0);
+
+// Bytes of the scene's environment buffer (types.h GpuEnvironment and 28 B a texel); 0 without one.
+uint64_t environment_bytes_of(const Scene& scene);
 
 // Triangles over all of the scene's meshes.
 uint64_t triangle_count(const Scene& scene);

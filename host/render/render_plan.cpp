@@ -136,7 +136,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     }
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
     d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
-                                      triangle_count(scene), light_entry_bound(scene));
+                                      triangle_count(scene), light_entry_bound(scene), environment_bytes_of(scene));
     plan.devices.push_back(std::move(d));
   }
   return plan;

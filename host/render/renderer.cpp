@@ -47,6 +47,7 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   set.nodes = upload_entries(ctx, scene.bvh.nodes, "hierarchy nodes");
   set.triangles = upload_entries(ctx, scene.triangles, "triangles");
   set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
+  set.environment = upload_entries(ctx, scene.environment, "environment");
   return set;
 }
 
@@ -62,7 +63,8 @@ const Buffer& Renderer::upload_slots(DeviceContext& ctx, const GpuRenderParams& 
 }
 
 cl_uint Renderer::bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene) {
-  for (const Buffer* b : {&scene.spheres, &scene.lights, &scene.nodes, &scene.triangles, &scene.triangle_shading})
+  for (const Buffer* b : {&scene.spheres, &scene.lights, &scene.nodes, &scene.triangles, &scene.triangle_shading,
+                           &scene.environment})
     kernel.set_arg(first++, *b);
   return first;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/environment_map.h"
 #include "scene/light_pick.h"
 #include "scene/vec3_ops.h"
 #include "util/error.h"
@@ -303,6 +304,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   std::vector<GpuLight> punctual;
   for (const PunctualLight& l : scene.lights) punctual.push_back(to_gpu(l, cam.position));
   add_triangle_lights(out, punctual);
+  out.environment = environment_device_data(scene.environment, !out.lights.empty());
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole. An
   // orthographic camera's sensor is ortho_height world units high, its rays parallel.

@@ -26,6 +26,9 @@ struct DeviceScene {
   std::vector<GpuTriangle> triangles;
   std::vector<GpuTriangleShading> triangle_shading;
   Bvh bvh;  // over the triangles, and the spheres when they are in it; no nodes when neither
+  // The environment light's header and data (types.h GpuEnvironment, scene/environment_map.h);
+  // an empty one (kind NONE) when the scene has none.
+  std::vector<float> environment;
   GpuCamera camera{};
   float ray_epsilon = 0;  // world units; see ray_epsilon_for()
   // Radius of a sphere around all the scene's geometry, world units (light_pick.h: a directional

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -152,6 +153,20 @@ struct RenderSettings {
   std::string light_sampling = "cap";  // "cap" | "sphere" (scene/device_scene.h: LightSampling)
 };
 
+// The environment light (docs/environment.md, scene/environment.h): radiance arriving from
+// infinitely far, an equirectangular image (TOML [environment] file, --environment) or one colour,
+// times strength, turned rotation_deg about +Y.
+struct Environment {
+  std::string file;     // the image as named ("" for a colour)
+  std::string what;     // what named it, for messages: "scene.toml:3:1: environment.file" or "--environment"
+  Vec3 color{0, 0, 0};  // radiance when file is "", linear, >= 0
+  double strength = 1;  // >= 0, multiplies the image or colour
+  double rotation_deg = 0;  // about +Y, right-handed: 90 turns what was seen along +X to -Z
+  int width = 0, height = 0;  // the decoded image (file only)
+  std::shared_ptr<const std::vector<float>> rgb;  // width x height x 3 linear floats, row 0 the zenith
+  std::string hash;     // FNV-1a 64 of the decoded texels, hex (file only)
+};
+
 struct Scene {
   std::string file;        // path it was loaded from
   // FNV-1a 64 of the file's bytes, hex; with mesh files, chained over each one's name and
@@ -162,6 +177,7 @@ struct Scene {
   std::vector<Sphere> spheres;
   std::vector<TriangleMesh> meshes;  // the [[mesh]] tables, in file order; then glTF primitives
   std::vector<PunctualLight> lights;  // KHR_lights_punctual (glTF), in node order
+  std::optional<Environment> environment;  // [environment] or --environment; none: escaping rays are black
   // Non-fatal findings of the loader ("FILE:LINE:COLUMN: ..."), e.g. degenerate triangles dropped;
   // the commands print each as "clpt: warning: ...".
   std::vector<std::string> warnings;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/environment.h"
 #include "scene/gltf_error.h"
 #include "scene/gltf_loader.h"
 #include "scene/mesh_file.h"
@@ -709,6 +711,46 @@ PunctualLight read_light(const TableReader& light, size_t index) {
   return l;
 }
 
+// The [environment] table (docs/environment.md): an equirectangular image `file` (resolved
+// against the scene file's directory, read through scene/scene_image.h) or a `color`, times
+// `strength`, turned `rotation_deg` about +Y.
+Environment read_environment(const TableReader& table, const SourceMap& sources) {
+  table.reject_unknown_keys({"file", "color", "strength", "rotation_deg"});
+  Environment e;
+  const auto file = table.string("file");
+  const auto color = table.vec3("color");
+  if (file && color)
+    fail(table.position_of(*table.get("color")), table.key_path("color"),
+         "'color' does not go with 'file' (an environment is an image or one colour)");
+  if (!file && !color) fail(table.where(), table.path(), "missing required key 'file' (or 'color')");
+  if (const auto strength = table.number("strength")) {
+    if (!(std::isfinite(*strength) && *strength >= 0))
+      fail(table.position_of(*table.get("strength")), table.key_path("strength"),
+           "must be finite and >= 0, got " + scene_detail::format_number(*strength));
+    e.strength = *strength;
+  }
+  if (const auto rotation = table.number("rotation_deg")) {
+    if (!std::isfinite(*rotation))
+      fail(table.position_of(*table.get("rotation_deg")), table.key_path("rotation_deg"),
+           "must be finite, got " + scene_detail::format_number(*rotation));
+    e.rotation_deg = *rotation;
+  }
+  if (color) {
+    for (int i = 0; i < 3; ++i)
+      if (!(std::isfinite((*color)[i]) && (*color)[i] >= 0))
+        fail(table.position_of(*table.get("color")), table.key_path("color"),
+             "radiance must be finite and >= 0, element " + std::to_string(i) + " is " +
+                 scene_detail::format_number((*color)[i]));
+    e.color = *color;
+    return e;
+  }
+  if (file->empty()) fail(table.position_of(*table.get("file")), table.key_path("file"), "empty file name");
+  e.file = *file;
+  e.what = table.position_of(*table.get("file")).str() + ": " + table.key_path("file");
+  load_environment_image(e, resolve_mesh_path(sources.file(), *file), ExitCode::BadScene);
+  return e;
+}
+
 // The array of tables under `key` ([[sphere]], [[mesh]], [[gltf]], [[light]]), each element read by
 // read(reader, index); none when the key is absent.
 template <typename Read>
@@ -748,7 +790,7 @@ Scene build_scene(const toml::table& root, const std::string& file,
                   std::vector<std::pair<std::string, std::string>>& gltf_files) {
   SourceMap sources(file);
   const TableReader top(root, "", SourcePosition{file, 1, 1}, sources);
-  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh", "gltf", "light"});
+  top.reject_unknown_keys({"image", "render", "camera", "sphere", "mesh", "gltf", "light", "environment"});
   Scene scene;
   if (const auto image = top.table("image")) read_image(*image, scene.settings);
   const auto render = top.table("render");
@@ -775,6 +817,7 @@ Scene build_scene(const toml::table& root, const std::string& file,
     const toml::node* sphere = top.get("sphere");
     fail(sphere ? top.position_of(*sphere) : top.where(), "sphere", "the scene has no spheres or meshes");
   }
+  if (const auto environment = top.table("environment")) scene.environment = read_environment(*environment, sources);
   scene_detail::validate_scene(scene, sources);
   return scene;
 }
@@ -853,6 +896,7 @@ Scene load_scene_string(const std::string& text, const std::string& name) {
   Scene scene = build_scene(root, name, gltf_files);
   scene.file = name;
   scene.file_hash = scene_hash(text, scene.meshes, gltf_files);
+  chain_environment_hash(scene);
   return scene;
 }
 

@@ -283,13 +283,13 @@ void check_settings(const RenderSettings& settings, const SourceMap& sources) {
             "unknown light sampling '" + settings.light_sampling + "' (expected 'cap' or 'sphere')");
 }
 
-// Light comes from an emitter, a Pbr material with an emission, or a punctual light.
+// Light comes from an emitter, a Pbr material with an emission, a punctual light or the environment.
 void require_emitter(const Scene& scene, const SourceMap& sources) {
   const auto emits = [](const Material& m) {
     return m.type == MaterialType::Emitter ||
            (m.type == MaterialType::Pbr && (m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0));
   };
-  if (!scene.lights.empty()) return;
+  if (!scene.lights.empty() || scene.environment) return;
   for (const Sphere& sphere : scene.spheres)
     if (emits(sphere.material)) return;
   for (const TriangleMesh& mesh : scene.meshes)

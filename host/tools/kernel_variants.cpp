@@ -13,7 +13,7 @@ namespace {
 // Dimension positions in KernelVariant::choice.
 enum Dim {
   kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry,
-  kPbr, kLights, kCamera, kDimCount
+  kPbr, kLights, kCamera, kEnvironment, kDimCount
 };
 
 // Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
@@ -126,6 +126,30 @@ Sphere pbr_ball(bool transmission, bool volume) {
   return s;
 }
 
+// The environment seen through the room's open front: a 16 x 8 sky, brighter towards the zenith,
+// with a sun of one texel at 1000 times the sky (image), or a constant pale blue (constant).
+Environment variant_environment(bool image) {
+  Environment e;
+  e.what = "variant environment";
+  e.color = {0.3, 0.4, 0.6};
+  e.rotation_deg = 30;
+  if (!image) return e;
+  e.file = "variant_sky";
+  e.width = 16;
+  e.height = 8;
+  auto rgb = std::make_shared<std::vector<float>>(16 * 8 * 3);
+  for (int row = 0; row < 8; ++row)
+    for (int column = 0; column < 16; ++column) {
+      const float sky = 1.0f - 0.1f * float(row);
+      float* p = &(*rgb)[3 * (row * 16 + column)];
+      p[0] = 0.4f * sky, p[1] = 0.6f * sky, p[2] = sky;
+    }
+  for (int c = 0; c < 3; ++c) (*rgb)[3 * (2 * 16 + 11) + c] = 1000.0f;
+  e.rgb = std::move(rgb);
+  e.hash = "variant";
+  return e;
+}
+
 // One punctual light of the kind `value` names (1 point, 2 spot, 3 directional), inside the room.
 PunctualLight punctual_light(int value) {
   PunctualLight l;
@@ -156,8 +180,9 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"pbr", {"no-pbr", "pbr", "pbr-transmission", "pbr-volume"}},
       {"lights", {"no-punctual", "point", "spot", "directional"}},
       {"camera", {"perspective", "orthographic"}},
+      {"environment", {"no-environment", "environment-image", "environment-constant"}},
   };
-  static_assert(kDimCount == 12, "one entry per Dim");
+  static_assert(kDimCount == 13, "one entry per Dim");
   return dims;
 }
 
@@ -184,6 +209,7 @@ bool KernelVariant::has_pbr_transmission() const { return choice[kPbr] >= 2; }
 bool KernelVariant::has_pbr_volume() const { return choice[kPbr] == 3; }
 int KernelVariant::punctual_light() const { return choice[kLights]; }
 bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
+int KernelVariant::environment() const { return choice[kEnvironment]; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -271,6 +297,7 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
     scene.camera.projection = Projection::Orthographic;
     scene.camera.ortho_height = 6;
   }
+  if (variant.environment() != 0) scene.environment = variant_environment(variant.environment() == 1);
   scene.settings.estimator = estimator_name(variant.estimator());
   scene.settings.rr_from = variant.russian_roulette() ? 2 : -1;
   return scene;

@@ -3,7 +3,7 @@
 // loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
 // unrolled or rolled, each material present or absent, spheres alone or a mesh and a hierarchy,
 // the glTF material with or without transmission, each punctual light kind, the camera's
-// projection) and every pair of values of two dimensions that can be rendered together (the book
+// projection, the environment light: none, an image or a constant) and every pair of values of two dimensions that can be rendered together (the book
 // estimator refuses punctual lights). Two test tiers use the same set:
 //   oclgrind  renders each on Oclgrind with its memory, race and API checks, and against PoCL
 //   gpucc     compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
@@ -51,6 +51,7 @@ struct KernelVariant {
   bool has_pbr_volume() const;        // that ball is a volume (thickness > 0): refraction, Beer's law
   int punctual_light() const;         // 0 none, 1 point, 2 spot, 3 directional
   bool orthographic() const;          // the camera's projection
+  int environment() const;            // 0 none, 1 an image (16 x 8 sky with a sun), 2 a constant colour
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
@@ -71,7 +72,8 @@ std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& varia
 // variant has them; a mesh variant adds a mirror octahedron on the floor and 12 pebbles (so that
 // triangles and spheres are hierarchy primitives); a pbr variant a ball of the glTF material
 // between them; a light variant one punctual light in the room; an orthographic variant that
-// camera, 6 units high; its estimator and Russian roulette (from bounce 2) are set from the
+// camera, 6 units high; an environment variant a small sky image or a constant colour, seen
+// through the room's open front; its estimator and Russian roulette (from bounce 2) are set from the
 // variant.
 // Throws Error(Failure) when the scene has no spheres named left_ball and right_ball.
 Scene variant_scene(const Scene& diffuse, const KernelVariant& variant);
