@@ -13,7 +13,7 @@ namespace {
 // Dimension positions in KernelVariant::choice.
 enum Dim {
   kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry,
-  kPbr, kLights, kCamera, kDimCount
+  kPbr, kLights, kCamera, kAovs, kDimCount
 };
 
 // Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
@@ -156,8 +156,9 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"pbr", {"no-pbr", "pbr", "pbr-transmission", "pbr-volume"}},
       {"lights", {"no-punctual", "point", "spot", "directional"}},
       {"camera", {"perspective", "orthographic"}},
+      {"aovs", {"no-aovs", "aovs"}},
   };
-  static_assert(kDimCount == 12, "one entry per Dim");
+  static_assert(kDimCount == 13, "one entry per Dim");
   return dims;
 }
 
@@ -184,6 +185,7 @@ bool KernelVariant::has_pbr_transmission() const { return choice[kPbr] >= 2; }
 bool KernelVariant::has_pbr_volume() const { return choice[kPbr] == 3; }
 int KernelVariant::punctual_light() const { return choice[kLights]; }
 bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
+bool KernelVariant::aovs() const { return choice[kAovs] == 1; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -283,6 +285,7 @@ void apply_variant(const KernelVariant& variant, RenderRequest& request) {
   request.precision = variant.precision();
   request.generic_kernel = variant.generic();
   request.scene_loops = variant.scene_loops();
+  request.aovs.albedo = request.aovs.normal = request.aovs.depth = variant.aovs();
 }
 
 VariantProgram variant_program(const Scene& scene, const KernelVariant& variant) {
@@ -295,6 +298,7 @@ VariantProgram variant_program(const Scene& scene, const KernelVariant& variant)
   request.precision = variant.precision();
   request.generic_kernel = variant.generic();
   request.scene_loops = variant.scene_loops();
+  request.aovs.albedo = request.aovs.normal = request.aovs.depth = variant.aovs();
   DeviceInfo gpu;
   gpu.name = "a GPU compiler's target";
   gpu.type = "GPU";
