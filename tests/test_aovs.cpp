@@ -64,7 +64,7 @@ Scene base_scene() {
 }
 
 // The wall (reflectance 1/4, 1/2, 3/4: sums of 16 of them are exact in float) and a grey sphere
-// before it, left of centre.
+// before it, left of centre, lit from behind the camera.
 constexpr Vec3 kWallColour = {0.25, 0.5, 0.75};
 constexpr Vec3 kSphereCentre = {-0.5, 0.25, -4};
 constexpr double kSphereRadius = 1;
@@ -77,11 +77,19 @@ Scene wall_and_sphere() {
   ball.radius = kSphereRadius;
   ball.material = coloured(MaterialType::Lambertian, {0.5, 0.5, 0.5});
   scene.spheres.push_back(ball);
+  // A lamp behind the camera, out of view: a lit (and noisy) beauty, for adaptive sampling.
+  Sphere lamp;
+  lamp.name = "lamp_behind";
+  lamp.center = {0, 0, 3};
+  lamp.radius = 0.5;
+  lamp.material.type = MaterialType::Emitter;
+  lamp.material.emission = {8, 8, 8};
+  scene.spheres.push_back(lamp);
   return scene;
 }
 
 Film render_aovs(Scene scene, Sampler sampler, ExecutionForm form = ExecutionForm::Megakernel, bool aovs = true,
-                 int64_t spp = 16) {
+                 int64_t spp = 16, bool adaptive = false) {
   RenderRequest request;
   request.use_kernel_cache = false;
   scene.settings.width = kWidth;
@@ -91,6 +99,7 @@ Film render_aovs(Scene scene, Sampler sampler, ExecutionForm form = ExecutionFor
   scene.settings.sampler = sampler;
   request.scene = scene;
   request.form = form;
+  request.adaptive = adaptive;
   request.aovs.albedo = request.aovs.normal = request.aovs.depth = aovs;
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";
@@ -179,10 +188,13 @@ TEST(Aovs, WallAndSphereMatchTheClosedForm) {
   EXPECT_GT(expect_layers(film, scene, cast_wall_and_sphere, 1e-5), kWidth * kHeight * 3 / 4);
 }
 
-// Pixels whose 16 rays all hit the wall: its reflectance exactly, its normal exactly.
-TEST(Aovs, LambertianWallAlbedoIsItsReflectanceExactly) {
+// Pixels whose rays all hit the wall: its reflectance exactly, its normal exactly; also under
+// adaptive sampling, whose pixels take different numbers of samples (in slots of several passes).
+class AovsWall : public ::testing::TestWithParam<bool> {};
+TEST_P(AovsWall, LambertianWallAlbedoIsItsReflectanceExactly) {
+  const bool adaptive = GetParam();
   const Scene scene = wall_and_sphere();
-  const Film film = render_aovs(scene, Sampler::Jitter);
+  const Film film = render_aovs(scene, Sampler::Jitter, ExecutionForm::Megakernel, true, adaptive ? 64 : 16, adaptive);
   const std::vector<float> means = film.aov_means();
   // The right-hand column is far from the sphere (left of centre).
   for (int row = 0; row < kHeight; ++row) {
@@ -195,6 +207,8 @@ TEST(Aovs, LambertianWallAlbedoIsItsReflectanceExactly) {
     EXPECT_EQ(m[CLPT_AOV_NORMAL + 2], 1.0f);
   }
 }
+INSTANTIATE_TEST_SUITE_P(Aovs, AovsWall, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& i) { return i.param ? "Adaptive" : "Uniform"; });
 
 // A mirror wall in front, a coloured wall behind the camera: the albedo is the mirror's colour
 // times the wall's (OIDN's "first non-delta hit"), the normal the back wall's, the depth the
