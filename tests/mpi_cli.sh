@@ -66,7 +66,7 @@ adaptive=(render "$scene" "${small[@]}" --sampler jitter --estimator nee --adapt
 same_film ad1.ckpt ad2.ckpt "--adaptive over 2 ranks"
 # The first-hit layers (--aovs): each rank sends its part's layer sums beside its radiance; rank
 # 0's EXR equals one process's, the layers included.
-aovs=(render "$scene" "${small[@]}" --sampler jitter --spp 32 --aovs albedo,normal,depth -q)
+aovs=(render "$scene" "${small[@]}" --sampler grid --spp 32 --aovs albedo,normal,depth -q)  # two passes of 16, as in 1.
 layers=R,G,B,albedo.R,albedo.G,albedo.B,N.X,N.Y,N.Z,Z
 "$clpt" "${aovs[@]}" -o aov1.exr || fail "--aovs: one process exit $?"
 "${mpirun[@]}" -n 2 "$clpt" "${aovs[@]}" -o aov2.exr || fail "--aovs: mpirun exit $?"
