@@ -119,7 +119,7 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
     add_buffer(e, triangles * sizeof(GpuTriangleShading), "triangle shading");
     add_buffer(e, 2 * (triangles + spheres) * sizeof(GpuBvhNode), "hierarchy nodes");
   }
-  // Both forms keep 16 B per sample of a launch (job results) and 32 B per pixel of a launch (pass
+  // Both forms keep result_bytes_per_job per sample of a launch (job results) and 32 B per pixel of a launch (pass
   // statistics). Wavefront launches cover the whole image; megakernel launches at most budget / 32
   // pixels (pass_loop.cpp).
   uint64_t launch_pixels = pixels;

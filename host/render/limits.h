@@ -72,7 +72,7 @@ struct MemoryEstimate {
 // `spheres` spheres (paths_in_flight: the wavefront's path slots as planned, render_plan.h): the sphere buffer (96 B each) and pass statistics (32 B per pixel of a
 // launch) for both; the wavefront adds paths_in_flight x the bytes of one path slot (the
 // buffers of kernels/path_state.h twice and its scratch once, at the double preset's sizes, the
-// largest) and job results of 16 B per sample of a pass, with
+// largest) and job results of result_bytes_per_job per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 // `triangles` adds the triangle, triangle shading and hierarchy node buffers (the nodes counted at
 // their bound of two per primitive, spheres included); `lights` the light list (48 B each).
