@@ -4,7 +4,8 @@
  * job_pixel(j) (film.cl: a pixel range, or an adaptive pass's slots). It runs the stages of
  * path.cl in a loop, one segment per iteration, until the path ends, and leaves its result for
  * film_sum_jobs (film.cl). Reads: the geometry (spheres; the hierarchy and triangles, bvh.cl),
- * GpuRenderParams, the light buffer (nee) and the slots (adaptive passes). Writes: results.
+ * GpuRenderParams, the light buffer (nee) and the slots (adaptive passes). Writes: results (and,
+ * with CLPT_AOVS, the job's first-hit layers after them: film_aov.cl).
  *
  * Two loops, chosen by the host (kernel_options.cpp, CLPT_LOCKSTEP_GROUP):
  *  - per path (GPUs): each work-item loops until its own path ends; the GPU's SIMT hardware masks
@@ -19,6 +20,9 @@
 #include "types.h"
 #include "path.cl"
 #include "film.cl"
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#include "film_aov.cl" /* the first-hit layers' results and sums */
+#endif
 
 #ifndef CLPT_LOCKSTEP_GROUP
 #define CLPT_LOCKSTEP_GROUP 0
@@ -141,6 +145,9 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   /* The job index afresh (not `job`, which kept across the loop would be a 64-bit value). */
   const uint job_done = (uint)get_global_id(0) + slot_offset;
   if (job_done < jobs) job_result_store(results, job_done, jobs, path.radiance, path.segments);
+#if defined(CLPT_AOVS) && CLPT_AOVS
+  if (job_done < jobs) job_aov_store(results, job_done, jobs, &path);
+#endif
 }
 #else
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
@@ -156,5 +163,8 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
     path_shade(&path, path_intersect(&path, &scene, &params), &scene, &params);
   }
   job_result_store(results, job, job_count(&params), path.radiance, path.segments);
+#if defined(CLPT_AOVS) && CLPT_AOVS
+  job_aov_store(results, job, job_count(&params), &path);
+#endif
 }
 #endif

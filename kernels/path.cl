@@ -99,6 +99,11 @@ CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint
   path.segments = 0u;
   path.skip_sphere = -1;
   path.alive = 1;
+#if defined(CLPT_AOVS) && CLPT_AOVS /* the first-hit layers (aov.cl): nothing recorded yet */
+  path.aov_albedo = v3_splat((real)1);
+  path.aov_normal = v3_splat((real)0);
+  path.aov_depth = (real)0;
+#endif
   return path;
 }
 
@@ -448,6 +453,8 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
 #endif
 }
 
+#include "aov.cl" /* the first-hit layers (CLPT_AOVS): material_albedo, aov_record */
+
 /* Field-wise choice between two path states (a select of the whole struct would stop PoCL's
  * vectoriser, see v3_select). */
 CLPT_INLINE PathState path_select(bool c, PathState a, PathState b) {
@@ -621,6 +628,9 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   throughput = v3_scale(throughput, roulette && q > (real)0 ? (real)1 / q : (real)1);
 #endif
 
+#if defined(CLPT_AOVS) && CLPT_AOVS
+  aov_record(path, missed, t, &material, normal, scatters && !v3_is_zero(weight));
+#endif
   path->throughput = v3_select(scatters, throughput, path->throughput);
   path->origin = v3_select(scatters, leaving_origin(&surface, next), path->origin);
   path->direction = v3_select(scatters, next, path->direction);

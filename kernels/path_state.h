@@ -19,6 +19,10 @@
  *             its buffer exists for every kernel (bound alike), unused without nee
  *   FROM_JOB  not stored: path_load derives it from the slot's job index (pixel, sample)
  *   LOCAL     not stored: only live within one kernel (alive: a stored path is always alive)
+ *   AOV, AOV_VEC3  a value (a Vec3) that exists only in kernels built with CLPT_AOVS (the
+ *             first-hit layers, aov.cl; kernel_options.cpp decides): without it the kernels expand
+ *             it to nothing at all; the host allocates its buffers only for such a kernel
+ *             (CLPT_PATH_AOV_BUFFER below)
  * `real` is float, or double under the double preset: the host passes CLPT_REAL_BYTES as the
  * size it allocates. One element per path slot, one scalar per buffer: scalar loads keep the
  * kernels vectorisable on PoCL and coalesced on GPUs. */
@@ -38,6 +42,12 @@
   X(STORED, uint, bounce, "index of the current segment: 0 = camera ray", B)                          \
   X(STORED, uint, segments, "ray segments traced so far (for rays/s)", B)                             \
   X(STORED, int, skip_sphere, "sphere the ray is leaving on its outer side (cannot be hit), or -1", B) \
+  X(AOV_VEC3, real, aov_albedo,                                                                       \
+    "first-hit layers (aov.cl): the recorded albedo; until a surface is recorded, the product of the " \
+    "delta bounces' weights so far (1 at the camera)", B)                                             \
+  X(AOV_VEC3, real, aov_normal,                                                                       \
+    "the recorded surface's shading normal, world space; 0 until one is recorded (or for a miss)", B) \
+  X(AOV, real, aov_depth, "distance along the camera ray to its first hit, world units; 0 for a miss", B) \
   X(LOCAL, int, alive, "0 once the path has ended", B)
 
 /* Element bytes of a buffer of `type`. */
@@ -55,10 +65,32 @@
 #define CLPT_PATH_BUFFERS_NEE(type, name, doc, B) B(type, name, CLPT_PATH_BYTES_##type, doc)
 #define CLPT_PATH_BUFFERS_FROM_JOB(type, name, doc, B)
 #define CLPT_PATH_BUFFERS_LOCAL(type, name, doc, B)
+#define CLPT_PATH_BUFFERS_AOV(type, name, doc, B) CLPT_PATH_AOV_BUFFER(B, type, name, CLPT_PATH_BYTES_##type, doc)
+#define CLPT_PATH_BUFFERS_AOV_VEC3(type, name, doc, B)                              \
+  CLPT_PATH_AOV_BUFFER(B, type, name##_x, CLPT_PATH_BYTES_##type, doc)             \
+  CLPT_PATH_AOV_BUFFER(B, type, name##_y, CLPT_PATH_BYTES_##type, "")              \
+  CLPT_PATH_AOV_BUFFER(B, type, name##_z, CLPT_PATH_BYTES_##type, "")
 #define CLPT_PATH_BUFFERS_OF(kind, type, name, doc, B) CLPT_PATH_BUFFERS_##kind(type, name, doc, B)
 #define CLPT_PATH_STATE_FIELDS(B)              \
   CLPT_PATH_FIELDS(CLPT_PATH_BUFFERS_OF, B) \
   B(uint, job, 4, "job index in the pass: sample (job / pixel_count), pixel (job % pixel_count)")
+
+/* An AOV field's buffer. A kernel has it exactly when it is built with CLPT_AOVS. The host, which
+ * serves both kinds of kernel, expands it to a statement that runs only when the bool
+ * CLPT_HOST_AOVS, which the expanding code defines, is true (every host expansion is a list of
+ * statements: allocations, sizes). */
+#ifdef __OPENCL_C_VERSION__
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#define CLPT_PATH_AOV_BUFFER(B, type, name, bytes, doc) B(type, name, bytes, doc)
+#else
+#define CLPT_PATH_AOV_BUFFER(B, type, name, bytes, doc)
+#endif
+#else
+#define CLPT_PATH_AOV_BUFFER(B, type, name, bytes, doc) \
+  if (CLPT_HOST_AOVS) {                                 \
+    B(type, name, bytes, doc)                           \
+  }
+#endif
 
 /* Per-iteration scratch of the wavefront, one set: written by wf_intersect, read by wf_shade in
  * the same bounce. Not part of a path (the megakernel keeps its Hit in registers). */
@@ -74,6 +106,13 @@
 #define CLPT_PATH_MEMBER_NEE(type, name) type name;
 #define CLPT_PATH_MEMBER_FROM_JOB(type, name) type name;
 #define CLPT_PATH_MEMBER_LOCAL(type, name) type name;
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#define CLPT_PATH_MEMBER_AOV(type, name) type name;
+#define CLPT_PATH_MEMBER_AOV_VEC3(type, name) Vec3 name;
+#else
+#define CLPT_PATH_MEMBER_AOV(type, name)
+#define CLPT_PATH_MEMBER_AOV_VEC3(type, name)
+#endif
 #define CLPT_PATH_MEMBER_OF(kind, type, name, doc, B) CLPT_PATH_MEMBER_##kind(type, name)
 #define CLPT_PATH_STATE_MEMBERS CLPT_PATH_FIELDS(CLPT_PATH_MEMBER_OF, _)
 
@@ -85,6 +124,13 @@
 #define CLPT_PATH_SELECT_NEE(name) CLPT_PATH_SELECT_SCALAR(name)
 #define CLPT_PATH_SELECT_FROM_JOB(name) CLPT_PATH_SELECT_SCALAR(name)
 #define CLPT_PATH_SELECT_LOCAL(name) CLPT_PATH_SELECT_SCALAR(name)
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#define CLPT_PATH_SELECT_AOV(name) CLPT_PATH_SELECT_SCALAR(name)
+#define CLPT_PATH_SELECT_AOV_VEC3(name) CLPT_PATH_SELECT_VEC3(name)
+#else
+#define CLPT_PATH_SELECT_AOV(name)
+#define CLPT_PATH_SELECT_AOV_VEC3(name)
+#endif
 #define CLPT_PATH_SELECT_OF(kind, type, name, doc, B) CLPT_PATH_SELECT_##kind(name)
 #define CLPT_PATH_SELECT_FIELDS CLPT_PATH_FIELDS(CLPT_PATH_SELECT_OF, _)
 
@@ -94,6 +140,13 @@
 #define CLPT_PATH_LOAD_NEE(type, name) p.name = CLPT_NEE_COMPILED ? name[slot] : (type)0;
 #define CLPT_PATH_LOAD_FROM_JOB(type, name)
 #define CLPT_PATH_LOAD_LOCAL(type, name)
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#define CLPT_PATH_LOAD_AOV(type, name) CLPT_PATH_LOAD_STORED(type, name)
+#define CLPT_PATH_LOAD_AOV_VEC3(type, name) CLPT_PATH_LOAD_VEC3(type, name)
+#else
+#define CLPT_PATH_LOAD_AOV(type, name)
+#define CLPT_PATH_LOAD_AOV_VEC3(type, name)
+#endif
 #define CLPT_PATH_LOAD_OF(kind, type, name, doc, B) CLPT_PATH_LOAD_##kind(type, name)
 #define CLPT_PATH_LOAD_FIELDS CLPT_PATH_FIELDS(CLPT_PATH_LOAD_OF, _)
 
@@ -107,6 +160,13 @@
   if (CLPT_NEE_COMPILED) name[slot] = p->name;
 #define CLPT_PATH_STORE_FROM_JOB(type, name)
 #define CLPT_PATH_STORE_LOCAL(type, name)
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#define CLPT_PATH_STORE_AOV(type, name) CLPT_PATH_STORE_STORED(type, name)
+#define CLPT_PATH_STORE_AOV_VEC3(type, name) CLPT_PATH_STORE_VEC3(type, name)
+#else
+#define CLPT_PATH_STORE_AOV(type, name)
+#define CLPT_PATH_STORE_AOV_VEC3(type, name)
+#endif
 #define CLPT_PATH_STORE_OF(kind, type, name, doc, B) CLPT_PATH_STORE_##kind(type, name)
 #define CLPT_PATH_STORE_FIELDS CLPT_PATH_FIELDS(CLPT_PATH_STORE_OF, _)
 #endif

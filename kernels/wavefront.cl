@@ -9,6 +9,7 @@
  *                 its job's result slot, a surviving one is stored densely into the other state
  *                 set (atomic appends): shading and compaction in one pass
  *   film_sum_jobs every pixel -> GpuPixelPass, summing its samples in sample order (film.cl)
+ *   film_sum_aovs with CLPT_AOVS: every pixel's first-hit layers, likewise (film_aov.cl)
  * The physics is path.cl's: these kernels only load a PathState, call the same stage function
  * as the megakernel, and store it. Job j of a pass is sample job_sample(j) of pixel job_pixel(j)
  * (film.cl); its result depends on nothing else, so the image equals
@@ -17,6 +18,9 @@
 #include "path_state.h"
 #include "path.cl"
 #include "film.cl"
+#if defined(CLPT_AOVS) && CLPT_AOVS
+#include "film_aov.cl" /* the first-hit layers' results and sums */
+#endif
 
 #define CLPT_STATE_PARAM(type, name, bytes, doc) , __global type* name
 #define CLPT_STATE_PARAMS CLPT_PATH_STATE_FIELDS(CLPT_STATE_PARAM)
@@ -107,6 +111,9 @@ __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLigh
   path_shade(&p, hit, &scene, &params);
   const uint job_index = job[slot];
   if (active && !p.alive) job_result_store(results, job_index, job_count(&params), p.radiance, p.segments);
+#if defined(CLPT_AOVS) && CLPT_AOVS
+  if (active && !p.alive) job_aov_store(results, job_index, job_count(&params), &p);
+#endif
   const bool survives = active && p.alive;
   rank_of[lid] = survives ? 1u : 0u;
   barrier(CLK_LOCAL_MEM_FENCE);

@@ -5,7 +5,7 @@
 # exactly two passes of 16 (the first pass is one sampler period, the second what is left), so
 # the pass boundaries are those of one process whatever the timing.
 #  * 1 process, mpirun -n 2 and -n 3: the same film, bit for bit; jitter, sobol and --adaptive
-#    likewise (-n 2);
+#    likewise (-n 2), and with --aovs the same first-hit layers in the EXR;
 #  * a plain process maps no MPI library; under mpirun the ranks load libclpt_mpi.so;
 #  * the summary names every rank with its host, devices, share, paths/s and busy time;
 #  * a rank slowed by CLPT_INJECT_FAULT=delay takes the smaller share (and the image is one
@@ -64,6 +64,14 @@ adaptive=(render "$scene" "${small[@]}" --sampler jitter --estimator nee --adapt
 "$clpt" "${adaptive[@]}" -q -o ad1.pfm --checkpoint ad1.ckpt || fail "adaptive: one process exit $?"
 "${mpirun[@]}" -n 2 "$clpt" "${adaptive[@]}" -q -o ad2.pfm --checkpoint ad2.ckpt || fail "adaptive: mpirun exit $?"
 same_film ad1.ckpt ad2.ckpt "--adaptive over 2 ranks"
+# The first-hit layers (--aovs): each rank sends its part's layer sums beside its radiance; rank
+# 0's EXR equals one process's, the layers included.
+aovs=(render "$scene" "${small[@]}" --sampler grid --spp 32 --aovs albedo,normal,depth -q)  # two passes of 16, as in 1.
+layers=R,G,B,albedo.R,albedo.G,albedo.B,N.X,N.Y,N.Z,Z
+"$clpt" "${aovs[@]}" -o aov1.exr || fail "--aovs: one process exit $?"
+"${mpirun[@]}" -n 2 "$clpt" "${aovs[@]}" -o aov2.exr || fail "--aovs: mpirun exit $?"
+oiiotool aov1.exr --ch $layers aov2.exr --ch $layers --diff >aov_diff.out 2>&1
+grep -q PASS aov_diff.out || { fail "--aovs over 2 ranks: not one process's layers"; cat aov_diff.out; }
 
 # --target-error over 2 ranks: rank 0 estimates the error from its film and stops the job at the
 # sample count one process stops at (the check points depend on the samples only); pass sizes

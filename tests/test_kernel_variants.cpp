@@ -63,6 +63,7 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
       EXPECT_EQ(p.features.directional_lights, v.punctual_light() == 3) << v.name();
       EXPECT_EQ(p.features.orthographic, v.orthographic()) << v.name();
     }
+    EXPECT_EQ(p.features.aovs, v.aovs()) << v.name();  // generic or not: the render's request
     EXPECT_EQ(p.features.lockstep_group > 0,
               v.form() == ExecutionForm::Megakernel && v.megakernel_loop() == MegakernelLoop::Lockstep);
     EXPECT_EQ(scene.settings.rr_from >= 0, v.russian_roulette());

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -48,21 +49,28 @@ TEST(StructLayout, HostMatchesDevice) {
 // renderer allocates them) and by a kernel through the wavefront's own parameter list and its
 // path_load / path_store: the same buffers, the same element sizes, and every stored field carried
 // from one slot to another, for float and for the double preset's `real`.
+// With the first-hit layers (CLPT_AOVS, kernels/aov.cl) the list has their fields too, on both
+// sides; without them neither side has them.
 TEST(StructLayout, PathStateBuffersMatchTheHost) {
+  for (const bool aovs : {false, true})
   for (const bool double_preset : {false, true}) {
     if (double_preset && !test_device().device().fp64) continue;  // PoCL, the CI device, has it
     const size_t real_bytes = double_preset ? 8 : 4;
     std::vector<size_t> host_bytes;
     std::vector<std::string> names;
 #define CLPT_REAL_BYTES real_bytes
+#define CLPT_HOST_AOVS aovs
 #define HOST_BUFFER(type, name, bytes, doc) \
   host_bytes.push_back(bytes);               \
   names.push_back(#name);
     CLPT_PATH_STATE_FIELDS(HOST_BUFFER)
 #undef HOST_BUFFER
+#undef CLPT_HOST_AOVS
 #undef CLPT_REAL_BYTES
+    const bool has_aov_field = std::find(names.begin(), names.end(), "aov_depth") != names.end();
+    EXPECT_EQ(has_aov_field, aovs);
     const std::string options = std::string("-cl-std=CL1.2 -DCLPT_ESTIMATOR=1 -DCLPT_PRECISION=") +
-                                (double_preset ? "2" : "1");
+                                (double_preset ? "2" : "1") + (aovs ? " -DCLPT_AOVS=1" : "");
     Kernel kernel(test_program("probe_path_state.cl", options), "probe_path_state", test_device().where());
     Buffer sizes(test_device(), host_bytes.size() * sizeof(cl_uint), CL_MEM_WRITE_ONLY, "element sizes");
     GpuRenderParams params{};
@@ -86,7 +94,8 @@ TEST(StructLayout, PathStateBuffersMatchTheHost) {
     test_device().launch(kernel, 1, 1, "probe_path_state");
     const auto device_bytes = download<cl_uint>(sizes, host_bytes.size());
     for (size_t b = 0; b < host_bytes.size(); ++b) {
-      EXPECT_EQ(device_bytes[b], host_bytes[b]) << names[b] << (double_preset ? " (double)" : " (float)");
+      EXPECT_EQ(device_bytes[b], host_bytes[b]) << names[b] << (double_preset ? " (double)" : " (float)")
+                                                 << (aovs ? " (aovs)" : "");
       const auto both = download<unsigned char>(buffers[b], 2 * host_bytes[b]);
       EXPECT_EQ(std::vector<unsigned char>(both.begin() + long(host_bytes[b]), both.end()), slot0[b])
           << names[b] << ": slot 0 did not survive path_load and path_store"

@@ -121,6 +121,21 @@ TEST(Limits, MemoryEstimateFollowsTheRenderers) {
   EXPECT_EQ(wf.largest_label, "job results");
 }
 
+// The first-hit layers (--aovs): 28 B more per sample of job results (44 in all), 28 B of layer
+// sums per pixel of a launch, and for the wavefront 7 more state buffers per set (two sets, at the
+// double preset's 8 B: 112 B more per path slot).
+TEST(Limits, FirstHitLayersCountInTheMemoryEstimate) {
+  const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
+  EXPECT_EQ(result_bytes_per_job(false), 16u);
+  EXPECT_EQ(result_bytes_per_job(true), 44u);
+  EXPECT_EQ(max_samples_per_pass_for(d, 1u << 20, true), (256u << 20) / (44u << 20));
+  const MemoryEstimate mk = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 0, 0, 0, true);
+  EXPECT_EQ(mk.total_bytes, 10u * 128 + 1000u * 32 + 1000u * 28 + 1000u * 4096 * 44);
+  const MemoryEstimate wf = estimate_device_memory(ExecutionForm::Wavefront, 1000, 1, 65536, d);
+  const MemoryEstimate wf_aovs = estimate_device_memory(ExecutionForm::Wavefront, 1000, 1, 65536, d, 0, 0, 0, true);
+  EXPECT_EQ(wf_aovs.total_bytes - wf.total_bytes, 65536u * 112 + 1000u * 28 + 1000u * 4096 * 28);
+}
+
 // Triangles add 48 + 112 B each and two 32-byte nodes per primitive (spheres included); a device
 // whose largest allocation cannot hold the shading records refuses before upload, naming them.
 TEST(Limits, TrianglesCountInTheMemoryEstimate) {

@@ -16,6 +16,8 @@
 //   OclgrindAdaptive.*  adaptive sampling's slotted passes in both forms
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -233,6 +235,18 @@ TEST_P(OclgrindVariant, NoFindingsAndThePoclImage) {
               oclgrind_report.render_seconds);
   EXPECT_GE(a.close_fraction, bound.close_fraction) << variant.name() << ": " << a.describe();
   EXPECT_LE(a.worst_mean_difference(), bound.mean_relative) << variant.name() << ": " << a.describe();
+  // The first-hit layers (--aovs variants): the same on both, up to a path that moved (the same
+  // fraction of values as the image's bound; a value within 1e-4 of the larger, or 1e-4 absolute).
+  ASSERT_EQ(on_oclgrind.has_aovs(), variant.aovs());
+  if (!variant.aovs()) return;
+  const std::vector<float> la = on_oclgrind.aov_means(), lb = on_pocl.aov_means();
+  ASSERT_EQ(la.size(), lb.size());
+  size_t close = 0;
+  for (size_t i = 0; i < la.size(); ++i)
+    close += std::abs(la[i] - lb[i]) <= 1e-4f * std::max(1.0f, std::max(std::abs(la[i]), std::abs(lb[i]))) ? 1 : 0;
+  std::printf("%s: first-hit layers, Oclgrind against PoCL: %.2f%% of values within 1e-4\n", variant.name().c_str(),
+              100.0 * double(close) / double(la.size()));
+  EXPECT_GE(double(close) / double(la.size()), bound.close_fraction) << variant.name() << ": first-hit layers";
 }
 
 // A render of scenes/NAME.toml at w x h, spp samples of `sampler`, this file's seed, on `device`.

@@ -66,7 +66,28 @@ struct RenderOptions {
   std::string checkpoint;         // --checkpoint FILE ("" = none)
   double checkpoint_every_s = 60;
   std::string resume;             // --resume FILE ("" = none)
+  std::string aovs;               // --aovs LIST ("" = none): first-hit layers for denoisers
+  AovSet requested_aovs;          // parsed from `aovs` by run()
 };
+
+// --aovs: the layers asked for, checked against the outputs that must carry them (before any
+// work). They live in the EXR and in no checkpoint: a raw .pfm film, --checkpoint and --resume
+// cannot have them.
+AovSet requested_aovs(const RenderOptions& o, const std::string& out) {
+  if (o.aovs.empty()) return {};
+  const std::string what = "--aovs " + o.aovs;
+  const AovSet set = parse_aov_set(o.aovs, what);
+  if (!out.empty() && std::filesystem::path(out).extension() == ".pfm")
+    throw Error(ExitCode::Usage, what + ": the layers are written as channels of the EXR; -o " + out +
+                                     " is a raw .pfm film, which holds the radiance only (write an .exr)");
+  if (!o.checkpoint.empty())
+    throw Error(ExitCode::Usage, what + ": a checkpoint keeps no first-hit layers; render with --aovs "
+                                        "without --checkpoint");
+  if (!o.resume.empty())
+    throw Error(ExitCode::Usage, what + ": the checkpoint " + o.resume +
+                                     " holds no first-hit layers to continue; render with --aovs without --resume");
+  return set;
+}
 
 // Where the outputs go: -o, else SCENE_STEM.exr in the current directory. Checked before any work.
 std::string output_path(const RenderOptions& o) {
@@ -155,6 +176,7 @@ void write_outputs(const RenderOptions& o, const std::string& path, const Film& 
     if (report.estimate.valid) info.error_estimate = report.estimate.relative_rmse_upper;
     info.target_error = o.target_error;
     if (report.stop != StopReason::None) info.stop = stop_reason_name(report.stop);
+    info.aovs = aov_set_text(o.requested_aovs);
     add_times(info, report, times);
     written += " and " + write_render_file(path, film, info, o.exr_compression);
 #endif
@@ -222,12 +244,13 @@ int run_as_worker(RankGroup& ranks, const RenderRequest& request) {
   return code.empty() ? static_cast<int>(ExitCode::Failure) : int(code[0]);
 }
 
-int run(const RenderOptions& o) {
+int run(RenderOptions o) {
   RenderCommandTimes times;
   // Under an MPI launcher: the job's ranks (loads MPI); otherwise this process alone.
   RankGroup& ranks = process_rank_group();
   const bool writes = ranks.coordinator();  // rank 0 alone checks and writes the outputs
   const std::string out = writes ? output_path(o) : "";
+  o.requested_aovs = requested_aovs(o, out);
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (writes && !o.checkpoint.empty()) check_output_file("--checkpoint", o.checkpoint);
   const Clock::time_point load_start = Clock::now();
@@ -255,6 +278,7 @@ int run(const RenderOptions& o) {
   request.paths_in_flight = o.paths_in_flight;
   request.local_size = o.local_size;
   request.use_kernel_cache = !o.no_cache;
+  request.aovs = o.requested_aovs;
   request.show_progress = writes && !o.quiet && (o.progress || ::isatty(STDERR_FILENO));
   request.ranks = &ranks;
   request.launch_target_s = o.launch_ms / 1000;
@@ -399,6 +423,11 @@ std::function<int()> add_render_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--resume", o->resume, "Continue the render saved in checkpoint FILE up to --spp");
+#ifdef CLPT_WITH_OIIO
+  cmd->add_option("--aovs", o->aovs,
+                  "First-hit layers for denoisers (Open Image Denoise, OptiX) in the EXR: a comma list of albedo "
+                  "(albedo.R/G/B), normal (N.X/Y/Z, world space) and depth (Z); docs/aovs.md");
+#endif
   return [o] { return run(*o); };
 }
 

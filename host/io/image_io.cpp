@@ -139,21 +139,26 @@ std::string preview_path_for(const std::string& exr_path) {
 }
 
 std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
-                                 const std::string& exr_compression, const PreviewSettings& preview_settings) {
+                                 const std::string& exr_compression, const PreviewSettings& preview_settings,
+                                 const std::vector<ExtraChannel>& extra) {
   const int w = film.width(), h = film.height();
   const std::vector<float> mean = film.mean_rgb();
   const std::vector<float> variance = film.variance_rgb();
-  std::vector<float> pixels(size_t(w) * h * 6);
-  for (size_t p = 0; p < size_t(w) * h; ++p)
+  const size_t stride = 6 + extra.size();
+  std::vector<float> pixels(size_t(w) * h * stride);
+  for (size_t p = 0; p < size_t(w) * h; ++p) {
     for (int c = 0; c < 3; ++c) {
-      pixels[p * 6 + c] = mean[p * 3 + c];
-      pixels[p * 6 + 3 + c] = variance[p * 3 + c];
+      pixels[p * stride + c] = mean[p * 3 + c];
+      pixels[p * stride + 3 + c] = variance[p * 3 + c];
     }
+    for (size_t e = 0; e < extra.size(); ++e) pixels[p * stride + 6 + e] = extra[e].values[p];
+  }
   ImageToWrite exr;
   exr.width = w;
   exr.height = h;
   exr.channels.assign(std::begin(kMeanChannels), std::end(kMeanChannels));
   exr.channels.insert(exr.channels.end(), std::begin(kVarianceChannels), std::end(kVarianceChannels));
+  for (const ExtraChannel& e : extra) exr.channels.push_back(e.name);
   exr.pixels = pixels.data();
   exr.compression = exr_compression;
   exr.metadata = metadata;

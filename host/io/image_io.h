@@ -21,12 +21,21 @@
 
 namespace clpt {
 
+// One more float channel of a render's EXR, one value a pixel (the first-hit layers,
+// io/render_file.h names them).
+struct ExtraChannel {
+  std::string name;
+  std::vector<float> values;
+};
+
 // Writes the EXR at `exr_path` (channels and metadata as io/render_file.h lays them down; call
 // write_render_file there) and the PNG preview with the same stem (the two at once), the EXR with
-// `exr_compression` (io/exr_writer.h, exr_compression_names), the PNG as `preview` says
-// (io/tone_map.h). Returns the PNG path. Throws Error(OutputError) naming the file.
+// `exr_compression` (io/exr_writer.h, exr_compression_names) and the `extra` channels after the
+// mean and variance, the PNG as `preview` says (io/tone_map.h). Returns the PNG path. Throws
+// Error(OutputError) naming the file.
 std::string write_render_outputs(const std::string& exr_path, const Film& film, const ImageMetadata& metadata,
-                                 const std::string& exr_compression = "zip", const PreviewSettings& preview = {});
+                                 const std::string& exr_compression = "zip", const PreviewSettings& preview = {},
+                                 const std::vector<ExtraChannel>& extra = {});
 
 // Writes an 8-bit RGB PNG (or any format the extension names, through OpenImageIO), atomically.
 void write_rgb8_image(const std::string& path, int width, int height, const std::vector<unsigned char>& rgb);

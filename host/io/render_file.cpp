@@ -6,6 +6,8 @@
 #include <filesystem>
 
 #include "io/image_io.h"
+#include "kernels/aov_channels.h"
+#include "render/aov_set.h"
 #include "render/film_raw.h"
 #include "util/error.h"
 
@@ -46,6 +48,7 @@ constexpr const char* kOutputS = "clpt:output_s";
 constexpr const char* kElapsedS = "clpt:elapsed_s";
 constexpr const char* kPreviewExposure = "clpt:preview_exposure";
 constexpr const char* kPreviewTonemap = "clpt:preview_tonemap";
+constexpr const char* kAovs = "clpt:aovs";
 
 std::string text(const ImageMetadata& m, const char* key) {
   const auto it = m.find(key);
@@ -99,6 +102,41 @@ std::vector<float> take_rgb(const LoadedImage& img, const std::string& what, con
   return rgb;
 }
 
+// The channels `names` of `img`, n floats a pixel, when the image has all of them; else empty.
+std::vector<float> take_if_present(const LoadedImage& img, const char* const* names, size_t n) {
+  std::vector<int> index(n);
+  for (size_t c = 0; c < n; ++c) {
+    index[c] = img.channel(names[c]);
+    if (index[c] < 0) return {};
+  }
+  const size_t pixels = size_t(img.width) * size_t(img.height), stride = img.channels.size();
+  std::vector<float> out(pixels * n);
+  for (size_t p = 0; p < pixels; ++p)
+    for (size_t c = 0; c < n; ++c) out[p * n + c] = img.pixels[p * stride + size_t(index[c])];
+  return out;
+}
+
+// The first-hit layers info.aovs names (render/aov_set.h), as channels for the EXR.
+std::vector<ExtraChannel> aov_channels(const Film& film, const std::string& aovs) {
+  if (aovs.empty()) return {};
+  const AovSet set = parse_aov_set(aovs, "clpt:aovs");
+  if (!film.has_aovs()) throw Error(ExitCode::Failure, "write_render_file: the film has no first-hit layers");
+  const std::vector<float> means = film.aov_means();
+  const size_t pixels = film.pixel_count();
+  std::vector<ExtraChannel> out;
+  auto add = [&](const char* name, uint32_t channel) {
+    ExtraChannel e;
+    e.name = name;
+    e.values.resize(pixels);
+    for (size_t p = 0; p < pixels; ++p) e.values[p] = means[p * CLPT_AOV_CHANNELS + channel];
+    out.push_back(std::move(e));
+  };
+  for (uint32_t c = 0; c < 3 && set.albedo; ++c) add(kAlbedoChannels[c], CLPT_AOV_ALBEDO + c);
+  for (uint32_t c = 0; c < 3 && set.normal; ++c) add(kNormalChannels[c], CLPT_AOV_NORMAL + c);
+  if (set.depth) add(kDepthChannel, CLPT_AOV_DEPTH);
+  return out;
+}
+
 constexpr const char* kRenderHolds =
     "a render file holds the mean (R, G, B) and its variance (variance.R, variance.G, variance.B) as "
     "`clpt render` writes them";
@@ -143,6 +181,7 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   put_real(kElapsedS, info.elapsed_s);
   put_real(kPreviewExposure, info.preview_exposure);
   if (!info.preview_tonemap.empty()) m[kPreviewTonemap] = info.preview_tonemap;
+  if (!info.aovs.empty()) m[kAovs] = info.aovs;
   return m;
 }
 
@@ -181,6 +220,7 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.preview_tonemap = text(m, kPreviewTonemap);
   info.output_s = real(m, kOutputS);
   info.elapsed_s = real(m, kElapsedS);
+  info.aovs = text(m, kAovs);
   return info;
 }
 
@@ -201,6 +241,9 @@ RenderFile read_render_file(const std::string& path, const std::string& what_giv
   out.info = parse_render_metadata(img.metadata);
   if (std::filesystem::path(path).extension() != ".pfm") {
     out.image.variance = take_rgb(img, what, kVarianceChannels, kRenderHolds);
+    out.albedo = take_if_present(img, kAlbedoChannels, 3);
+    out.normal = take_if_present(img, kNormalChannels, 3);
+    out.depth = take_if_present(img, &kDepthChannel, 1);
     return out;
   }
   const std::string variance_path = variance_pfm_path(path);
@@ -218,7 +261,8 @@ std::string write_render_file(const std::string& exr_path, const Film& film, con
   PreviewSettings preview;
   preview.exposure_ev = info.preview_exposure.value_or(0.0);
   preview.curve = parse_tone_curve(info.preview_tonemap).value_or(ToneCurve::Clamp);
-  return write_render_outputs(exr_path, film, render_metadata(info), exr_compression, preview);
+  return write_render_outputs(exr_path, film, render_metadata(info), exr_compression, preview,
+                              aov_channels(film, info.aovs));
 }
 
 }  // namespace clpt

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "io/image_codec.h"
 #include "render/film.h"
@@ -17,6 +18,13 @@ namespace clpt {
 // The channels of a render EXR, in the order written.
 inline constexpr const char* kMeanChannels[3] = {"R", "G", "B"};
 inline constexpr const char* kVarianceChannels[3] = {"variance.R", "variance.G", "variance.B"};
+// The first-hit layers a render asked for with --aovs (render/aov_set.h, docs/aovs.md), after the
+// variance, each only when asked for: the albedo as an RGB layer, the shading normal as an XYZ
+// layer (world space, [-1, 1]; Blender's and Nuke's layer.channel names), the depth as EXR's
+// standard depth channel Z (camera-ray distance, world units; 0 where the ray found nothing).
+inline constexpr const char* kAlbedoChannels[3] = {"albedo.R", "albedo.G", "albedo.B"};
+inline constexpr const char* kNormalChannels[3] = {"N.X", "N.Y", "N.Z"};
+inline constexpr const char* kDepthChannel = "Z";
 
 // What the clpt:* metadata says about a render. Numbers are unset when a file lacks the key (an
 // EXR made by another program, such as the book renderer's references) or holds no number there.
@@ -62,6 +70,9 @@ struct RenderFileInfo {
   // How the PNG preview beside the EXR was made (io/tone_map.h); the EXR itself is linear.
   std::optional<double> preview_exposure;  // clpt:preview_exposure, --exposure in EV (stops)
   std::string preview_tonemap;             // clpt:preview_tonemap: clamp | aces
+  // clpt:aovs, the first-hit layers the file holds ("albedo,normal,depth", those asked for; unset
+  // or "" for none). write_render_file writes their channels from the film.
+  std::string aovs;
 };
 
 ImageMetadata render_metadata(const RenderFileInfo& info);
@@ -70,6 +81,9 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& metadata);
 struct RenderFile {
   MeanVarianceImage image;
   RenderFileInfo info;
+  // The first-hit layers found in the file (by channel name): albedo and normal 3 floats a pixel,
+  // depth 1; empty where the file has no such channels.
+  std::vector<float> albedo, normal, depth;
 };
 
 // Reads a render EXR, or a NAME.pfm film with NAME.var.pfm. Errors are Error(Usage) and begin with
@@ -78,8 +92,9 @@ struct RenderFile {
 RenderFile read_render_file(const std::string& path, const std::string& what = "");
 
 // Writes the EXR at `exr_path` (compressed with `exr_compression`, io/exr_writer.h) and its PNG
-// preview (image_io.h). Returns the PNG's path.
-// The preview follows info.preview_exposure and info.preview_tonemap (unset: the book's clamp).
+// preview (image_io.h), with the first-hit layers info.aovs names (the film must have them,
+// Film::enable_aovs; else Error(Failure)). The preview follows info.preview_exposure and
+// info.preview_tonemap (unset: the book's clamp). Returns the PNG's path.
 std::string write_render_file(const std::string& exr_path, const Film& film, const RenderFileInfo& info,
                               const std::string& exr_compression = "zip");
 

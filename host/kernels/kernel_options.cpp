@@ -313,6 +313,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
   if (picks_material_by_select(features) && !reads_spheres_by_select(features)) o << " -DCLPT_MATERIAL_BY_SELECT=1";
   if (!features.generic) o << " -DCLPT_SCATTER_DRAW_PAIRS=" << (scatter_draws_paired(features) ? 1 : 0);
+  if (features.aovs) o << " -DCLPT_AOVS=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
 }
@@ -470,6 +471,9 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                        : "")
             : std::string("one per bounce (glass, a pbr material or Russian roulette read a third or fourth uniform)"))
     << "\n";
+  if (features.aovs)
+    o << "  first-hit layers: compiled (--aovs: albedo, normal and depth recorded per path and summed per "
+         "pixel; kernels/aov.cl)\n";
   o << "  build options: " << kernel_build_options(features) << "\n";
   return o.str();
 }

@@ -162,6 +162,11 @@ struct KernelFeatures {
   // The hit sphere read by selects (sphere_reads_by_select_for): CLPT_NO_FAST_GATHER=1 in a
   // specialised kernel whose spheres are all in the loop.
   bool no_fast_gather = false;
+  // CLPT_AOVS=1: paths record the first-hit layers a denoiser takes (albedo, normal, depth;
+  // kernels/aov.cl, docs/aovs.md) and the kernels sum them per pixel. Asked for by the render
+  // (`--aovs`), not by the scene: off in every kernel, the generic one too, unless asked; named in
+  // the build options only when on.
+  bool aovs = false;
   // When non-zero, -DCLPT_BUILD_NONCE=n: a source no driver has cached (cold-build timing).
   uint64_t build_nonce = 0;
 };

@@ -10,6 +10,7 @@
 
 #include "cl/cl_context.h"
 #include "cl/cl_error.h"
+#include "kernels/aov_channels.h"
 #include "render/limits.h"
 #include "render/megakernel_renderer.h"
 #include "render/wavefront_renderer.h"
@@ -163,19 +164,25 @@ void DevicePool::run_pass(const GpuRenderParams& params, Film& film, const std::
     // film takes the whole pass in slot order, so that the double sums of such a pixel are added in
     // the same order whatever the split (a pixel of a uniform pass gets one entry and no order).
     std::vector<GpuPixelPass> pass(params.pixel_count);
+    std::vector<float> aovs(film.has_aovs() ? size_t(params.pixel_count) * CLPT_AOV_CHANNELS : 0);
     run_pass_part(
         params, all,
-        [&](const std::vector<GpuPixelPass>& result, uint32_t slot_begin) {
+        [&](const std::vector<GpuPixelPass>& result, const std::vector<float>& result_aovs, uint32_t slot_begin) {
           std::copy(result.begin(), result.end(), pass.begin() + slot_begin);
+          if (!aovs.empty())
+            std::copy(result_aovs.begin(), result_aovs.end(), aovs.begin() + long(slot_begin) * CLPT_AOV_CHANNELS);
         },
         slots);
     film.add_pass(pass, 0, params.samples_per_pass, slots);
+    if (film.has_aovs()) film.add_aovs(aovs, 0, params.samples_per_pass, slots);
     return;
   }
   const int half = int(params.sample_begin >> CLPT_SAMPLE_STREAM_BIT);
-  run_pass_part(params, all, [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
-    film.add_pass(result, pixel_begin, params.samples_per_pass, nullptr, half);
-  });
+  run_pass_part(params, all,
+                [&](const std::vector<GpuPixelPass>& result, const std::vector<float>& aovs, uint32_t pixel_begin) {
+                  film.add_pass(result, pixel_begin, params.samples_per_pass, nullptr, half);
+                  if (film.has_aovs()) film.add_aovs(aovs, pixel_begin, params.samples_per_pass);
+                });
 }
 
 bool DevicePool::every_device_failed() const {
@@ -238,6 +245,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, const GpuSampleS
       p.pixel_begin = range.begin;
       p.pixel_count = range.count;
       std::vector<GpuPixelPass> result;
+      std::vector<float> aovs;  // the first-hit layers' sums, when the kernel has them
       const Clock::time_point start = Clock::now();
       try {
         if (faults_.fails_launch(m.position, launch))
@@ -245,6 +253,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, const GpuSampleS
         if (const uint64_t ms = faults_.launch_delay_ms(m.position))
           std::this_thread::sleep_for(std::chrono::milliseconds(ms));
         result = m.renderer->render_pass(p, slots ? slots + range.begin : nullptr);
+        aovs = m.renderer->aov_sums();
       } catch (const Error& e) {
         std::lock_guard<std::mutex> lock(mutex_);
         --pass.in_flight;
@@ -258,7 +267,7 @@ void DevicePool::work(Member& m, const GpuRenderParams& params, const GpuSampleS
       uint64_t segments = 0;
       for (const GpuPixelPass& px : result) segments += px.segments;
       std::lock_guard<std::mutex> lock(mutex_);
-      sink(result, range.begin);
+      sink(result, aovs, range.begin);
       const double pixel_samples = double(range.count) * params.samples_per_pass;
       m.launch_rate = pixel_samples / seconds;
       m.this_pass.pixel_samples += pixel_samples;

@@ -73,9 +73,11 @@ class DevicePool {
   // devices take in ranges as they take pixels of a uniform pass.
   void run_pass(const GpuRenderParams& params, Film& film, const std::vector<GpuSampleSlot>* slots = nullptr);
 
-  // Receives each traced range of a pass: its pixel results and its first pixel. Called under the
-  // pool's lock, one range at a time.
-  using PassSink = std::function<void(const std::vector<GpuPixelPass>& result, uint32_t pixel_begin)>;
+  // Receives each traced range of a pass: its pixel results, their first-hit layers' sums
+  // (Renderer::aov_sums; empty without the layers) and its first pixel. Called under the pool's
+  // lock, one range at a time.
+  using PassSink = std::function<void(const std::vector<GpuPixelPass>& result, const std::vector<float>& aovs,
+                                      uint32_t pixel_begin)>;
   // As run_pass, over the pixels `pixels` of the pass only (an MPI rank's part, rank_pass.h), each
   // traced range handed to `sink` instead of a film.
   void run_pass_part(const GpuRenderParams& params, PixelRange pixels, const PassSink& sink,

@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include "kernels/aov_channels.h"
+
 namespace clpt {
 
 Film::Film(int width, int height)
@@ -50,6 +52,37 @@ void Film::add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, u
   total_samples_ += uint64_t(samples) * pass.size();
   if (to_half1) half1_total_ += uint64_t(samples) * pass.size();
   track_pass_coverage(pass.size(), samples, slots ? slots->size() : pixel_count());
+}
+
+void Film::enable_aovs() {
+  aov_enabled_ = true;
+  aov_sum_.assign(pixel_count() * CLPT_AOV_CHANNELS, 0.0);
+  aov_samples_.assign(pixel_count(), 0.0);
+}
+
+void Film::add_aovs(const std::vector<float>& sums, size_t pixel_begin, uint32_t samples,
+                    const std::vector<GpuSampleSlot>* slots) {
+  if (!aov_enabled_) throw std::logic_error("Film::add_aovs: the film has no first-hit layers");
+  if (sums.size() % CLPT_AOV_CHANNELS != 0) throw std::logic_error("Film::add_aovs: a partial entry");
+  const size_t entries = sums.size() / CLPT_AOV_CHANNELS;
+  if (slots && pixel_begin + entries > slots->size())
+    throw std::logic_error("Film::add_aovs: a launch past the adaptive pass's slots");
+  for (size_t i = 0; i < entries; ++i) {
+    const size_t pixel = slots ? (*slots)[pixel_begin + i].pixel : pixel_begin + i;
+    if (pixel >= pixel_count()) throw std::logic_error("Film::add_aovs: a pixel outside the image");
+    for (size_t c = 0; c < CLPT_AOV_CHANNELS; ++c)
+      aov_sum_[pixel * CLPT_AOV_CHANNELS + c] += double(sums[i * CLPT_AOV_CHANNELS + c]);
+    aov_samples_[pixel] += samples;
+  }
+}
+
+std::vector<float> Film::aov_means() const {
+  std::vector<float> out(aov_sum_.size());
+  for (size_t p = 0; p < aov_samples_.size(); ++p)
+    for (size_t c = 0; c < CLPT_AOV_CHANNELS; ++c)
+      out[p * CLPT_AOV_CHANNELS + c] =
+          aov_samples_[p] > 0 ? float(aov_sum_[p * CLPT_AOV_CHANNELS + c] / aov_samples_[p]) : 0.0f;
+  return out;
 }
 
 void Film::track_pass_coverage(size_t pixels, uint32_t samples, size_t pass_slots) {

@@ -44,6 +44,20 @@ class Film {
   // loop gives the half its sample indices came from (sample_begin's CLPT_SAMPLE_STREAM_BIT).
   void add_pass(const std::vector<GpuPixelPass>& pass, size_t pixel_begin, uint32_t samples,
                 const std::vector<GpuSampleSlot>* slots = nullptr, int half = -1);
+  // The first-hit layers (render/aov_set.h, docs/aovs.md): a film that has them (enable_aovs,
+  // before any pass) adds each launch's layer sums (Renderer::aov_sums: CLPT_AOV_CHANNELS floats
+  // per entry of `pass`, entries as add_pass takes them, `slots` alike) with add_aovs, called for
+  // every launch beside add_pass; the mean of each pixel is over the same samples as its
+  // radiance (every sample, NaN/Inf ones too: their layers are finite). Not in checkpoints.
+  void enable_aovs();
+  bool has_aovs() const { return aov_enabled_; }
+  void add_aovs(const std::vector<float>& sums, size_t pixel_begin, uint32_t samples,
+                const std::vector<GpuSampleSlot>* slots = nullptr);
+  // Per pixel the mean of each layer channel, CLPT_AOV_CHANNELS floats a pixel
+  // (kernels/aov_channels.h), row 0 at the top; 0 for a pixel without samples. Empty without
+  // the layers.
+  std::vector<float> aov_means() const;
+
   // True between passes (no pass partly added): the film is then a consistent image.
   bool between_passes() const { return pending_pixels_ == 0; }
 
@@ -118,6 +132,9 @@ class Film {
   LargeVector<uint32_t> half1_samples_;  // samples per pixel in half 1, valid or not
   uint64_t half1_total_ = 0;             // their sum over pixels
   uint64_t half_spp_[2] = {0, 0};    // samples per pixel of each half's whole passes
+  bool aov_enabled_ = false;
+  LargeVector<double> aov_sum_;      // CLPT_AOV_CHANNELS per pixel: sums of the first-hit layers
+  LargeVector<double> aov_samples_;  // samples per pixel those sums hold
   uint64_t samples_per_pixel_ = 0;
   uint64_t total_samples_ = 0;
   uint64_t total_segments_ = 0;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "cl/cl_device.h"
+#include "kernels/aov_channels.h"
 #include "kernels/path_state.h"
 #include "scene/device_scene.h"
 #include "util/error.h"
@@ -13,16 +14,19 @@ namespace {
 
 // Bytes of one path slot: both persistent sets and the scratch set (kernels/path_state.h), with
 // `real` fields of the double preset's 8 bytes: the largest, so the estimate holds for every preset.
-constexpr uint64_t path_slot_bytes() {
+// `aovs`: the kernel has the first-hit layers' fields (CLPT_AOVS).
+constexpr uint64_t path_slot_bytes(bool aovs) {
   uint64_t bytes = 0;
   constexpr uint64_t real_bytes = 8;
 #define CLPT_REAL_BYTES real_bytes
+#define CLPT_HOST_AOVS aovs
 #define CLPT_ADD_STATE(type, name, size, doc) bytes += 2 * (size);
 #define CLPT_ADD_SCRATCH(type, name, size, doc) bytes += (size);
   CLPT_PATH_STATE_FIELDS(CLPT_ADD_STATE)
   CLPT_PATH_SCRATCH_FIELDS(CLPT_ADD_SCRATCH)
 #undef CLPT_ADD_STATE
 #undef CLPT_ADD_SCRATCH
+#undef CLPT_HOST_AOVS
 #undef CLPT_REAL_BYTES
   return bytes;
 }
@@ -49,8 +53,10 @@ uint64_t launch_buffer_budget(const DeviceInfo& device) {
   return device.max_alloc_bytes > 0 ? std::min<uint64_t>(cap, device.max_alloc_bytes / 2) : cap;
 }
 
-uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count) {
-  const uint64_t per_sample = 16 * uint64_t(std::max(pixel_count, 1u));
+uint32_t result_bytes_per_job(bool aovs) { return 16u + (aovs ? 4u * CLPT_AOV_CHANNELS : 0u); }
+
+uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count, bool aovs) {
+  const uint64_t per_sample = result_bytes_per_job(aovs) * uint64_t(std::max(pixel_count, 1u));
   return static_cast<uint32_t>(std::clamp<uint64_t>(launch_buffer_budget(device) / per_sample, 1, kMaxSamplesPerPass));
 }
 
@@ -110,7 +116,7 @@ uint64_t triangle_count(const Scene& scene) {
 
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device, uint64_t triangles,
-                                      uint64_t lights, uint64_t environment_bytes) {
+                                      uint64_t lights, uint64_t environment_bytes, bool aovs) {
   MemoryEstimate e;
   const uint64_t budget = launch_buffer_budget(device);
   add_buffer(e, uint64_t(spheres) * sizeof(GpuSphere), "spheres");
@@ -123,19 +129,20 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
     add_buffer(e, triangles * sizeof(GpuTriangleShading), "triangle shading");
     add_buffer(e, 2 * (triangles + spheres) * sizeof(GpuBvhNode), "hierarchy nodes");
   }
-  // Both forms keep 16 B per sample of a launch (job results) and 32 B per pixel of a launch (pass
+  // Both forms keep result_bytes_per_job per sample of a launch (job results) and 32 B per pixel of a launch (pass
   // statistics). Wavefront launches cover the whole image; megakernel launches at most budget / 32
   // pixels (pass_loop.cpp).
   uint64_t launch_pixels = pixels;
   if (form == ExecutionForm::Wavefront) {
-    e.total_bytes += uint64_t(paths_in_flight) * path_slot_bytes();  // 35 buffers of paths x 4 B: none the largest
+    e.total_bytes += uint64_t(paths_in_flight) * path_slot_bytes(aovs);  // 35 buffers of paths x 4 B: none the largest
   } else {
     launch_pixels = std::min<uint64_t>(pixels, std::max<uint64_t>(1, budget / sizeof(GpuPixelPass)));
   }
   add_buffer(e, launch_pixels * sizeof(GpuPixelPass), "pass statistics");
+  if (aovs) add_buffer(e, launch_pixels * 4 * CLPT_AOV_CHANNELS, "first-hit layer sums");
   const uint64_t samples = std::min<uint64_t>(
-      max_samples_per_pass_for(device, uint32_t(std::min<uint64_t>(pixels, UINT32_MAX))), kMaxSamplesPerPass);
-  add_buffer(e, launch_pixels * samples * 16, "job results");
+      max_samples_per_pass_for(device, uint32_t(std::min<uint64_t>(pixels, UINT32_MAX)), aovs), kMaxSamplesPerPass);
+  add_buffer(e, launch_pixels * samples * result_bytes_per_job(aovs), "job results");
   return e;
 }
 

@@ -40,9 +40,15 @@ constexpr uint64_t kMaxLaunchBufferBytes = uint64_t(256) << 20;
 // statistics per launch (so at most budget / 32 pixels per launch).
 uint64_t launch_buffer_budget(const DeviceInfo& device);
 
-// The most samples per pass whose job results (16 B per sample of each of `pixel_count` pixels)
-// fit launch_buffer_budget(device); at least 1. Both execution forms are bounded by it.
-uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count);  // <= kMaxSamplesPerPass
+// Bytes of one job's results (kernels/film.cl): 16, and 28 more with the first-hit layers
+// (`aovs`, CLPT_AOVS: kernels/film_aov.cl).
+uint32_t result_bytes_per_job(bool aovs);
+
+// The most samples per pass whose job results (result_bytes_per_job per sample of each of
+// `pixel_count` pixels) fit launch_buffer_budget(device); at least 1. Both execution forms are
+// bounded by it.
+uint32_t max_samples_per_pass_for(const DeviceInfo& device, uint32_t pixel_count,
+                                  bool aovs = false);  // <= kMaxSamplesPerPass
 
 // Which settings the command line set: a limit they break is a usage error (exit 2) naming the
 // option; one the scene file breaks is a scene error (exit 3) naming the file.
@@ -66,14 +72,17 @@ struct MemoryEstimate {
 // `spheres` spheres (paths_in_flight: the wavefront's path slots as planned, render_plan.h): the sphere buffer (96 B each) and pass statistics (32 B per pixel of a
 // launch) for both; the wavefront adds paths_in_flight x the bytes of one path slot (the
 // buffers of kernels/path_state.h twice and its scratch once, at the double preset's sizes, the
-// largest) and job results of 16 B per sample of a pass, with
+// largest) and job results of result_bytes_per_job per sample of a pass, with
 // samples_per_pass as large as it allows (WavefrontRenderer::max_samples_per_pass).
 // `triangles` adds the triangle, triangle shading and hierarchy node buffers (the nodes counted at
 // their bound of two per primitive, spheres included); `lights` the light list (48 B each);
 // `environment_bytes` the environment light's buffer (environment_bytes_of).
+// `aovs` (the first-hit layers, CLPT_AOVS): job results of result_bytes_per_job(true), the
+// layers' per-pixel sums (28 B per pixel of a launch) and, wavefront, their path-state fields.
 MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_t spheres,
                                       uint32_t paths_in_flight, const DeviceInfo& device,
-                                      uint64_t triangles = 0, uint64_t lights = 0, uint64_t environment_bytes = 0);
+                                      uint64_t triangles = 0, uint64_t lights = 0, uint64_t environment_bytes = 0,
+                                      bool aovs = false);
 
 // Bytes of the scene's environment buffer (types.h GpuEnvironment and 28 B a texel); 0 without one.
 uint64_t environment_bytes_of(const Scene& scene);

@@ -19,18 +19,19 @@ MegakernelRenderer::MegakernelRenderer(DeviceContext& ctx, const DeviceScene& sc
   program_ = build(ctx, "megakernel.cl", features);
   kernel_ = entry_point(ctx, program_, "render_paths");
   film_ = entry_point(ctx, program_, "film_sum_jobs");
+  prepare_aovs(ctx, program_, features);
 
   scene_ = upload_scene(ctx, scene);
 }
 
 uint32_t MegakernelRenderer::max_samples_per_pass(uint32_t pixel_count) const {
-  return max_samples_per_pass_for(ctx_.device(), pixel_count);
+  return max_samples_per_pass_for(ctx_.device(), pixel_count, aovs_);
 }
 
 std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots) {
   const size_t jobs = size_t(params.pixel_count) * params.samples_per_pass;
-  if (results_.bytes() < jobs * sizeof(cl_float4))
-    results_ = Buffer(ctx_, jobs * sizeof(cl_float4), CL_MEM_READ_WRITE, "job results");
+  const size_t result_bytes = jobs * result_bytes_per_job(aovs_);
+  if (results_.bytes() < result_bytes) results_ = Buffer(ctx_, result_bytes, CL_MEM_READ_WRITE, "job results");
   const size_t bytes = size_t(params.pixel_count) * sizeof(GpuPixelPass);
   if (pass_.bytes() < bytes) pass_ = Buffer(ctx_, bytes, CL_MEM_WRITE_ONLY, "pass statistics");
   const cl_uint next = bind_scene(kernel_, 0, scene_);
@@ -52,6 +53,7 @@ std::vector<GpuPixelPass> MegakernelRenderer::render_pass(const GpuRenderParams&
   ctx_.launch(film_, params.pixel_count, local_size, "film_sum_jobs");
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), bytes);
+  sum_aovs(ctx_, params, results_, local_size);
   return out;
 }
 

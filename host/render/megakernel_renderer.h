@@ -26,7 +26,8 @@ class MegakernelRenderer : public Renderer {
   // [params.pixel_begin, +pixel_count) and returns their pass statistics (blocking).
   std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots = nullptr) override;
 
-  // One result slot (16 bytes) per sample of a launch, within launch_buffer_budget.
+  // One result slot (result_bytes_per_job, render/limits.h) per sample of a launch, within
+  // launch_buffer_budget.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
 
 

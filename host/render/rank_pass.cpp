@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
+#include "kernels/aov_channels.h"
 #include "render/device_pool.h"
 #include "render/render_plan.h"
 #include "render/render_request.h"
@@ -190,14 +192,19 @@ RankPassTracer::PartResult RankPassTracer::trace_part(const GpuRenderParams& pas
     r.pixels.resize(part.count);
     const Clock::time_point start = Clock::now();
     try {
-      pool_->run_pass_part(pass, part, [&](const std::vector<GpuPixelPass>& result, uint32_t pixel_begin) {
+      pool_->run_pass_part(pass, part, [&](const std::vector<GpuPixelPass>& result, const std::vector<float>& aovs,
+                                           uint32_t pixel_begin) {
         std::copy(result.begin(), result.end(), r.pixels.begin() + (pixel_begin - part.begin));
+        if (aovs.empty()) return;  // no first-hit layers in the kernel
+        r.aovs.resize(size_t(part.count) * CLPT_AOV_CHANNELS);
+        std::copy(aovs.begin(), aovs.end(), r.aovs.begin() + long(pixel_begin - part.begin) * CLPT_AOV_CHANNELS);
       }, slots);
     } catch (const Error& e) {
       if (!pool_->every_device_failed()) throw;  // not a device failure: the job stops
       r.ok = false;
       r.failure = e.what();
       r.pixels.clear();
+      r.aovs.clear();
       mine_.failure = r.failure;
       pool_ = nullptr;  // takes no part in later passes (rank 0 gives it none)
     }
@@ -258,7 +265,7 @@ void RankPassTracer::trace(const GpuRenderParams& pass, Film& film, const std::v
     const PixelRange part = parts[size_t(group_.rank())];
     const PartResult mine = trace_part(pass, part, slots);
     ByteWriter reply;
-    reply.put(uint8_t(mine.ok)).put(uint8_t(mine.interrupted)).put(mine.seconds).put(mine.failure).put_array(mine.pixels);
+    reply.put(uint8_t(mine.ok)).put(uint8_t(mine.interrupted)).put(mine.seconds).put(mine.failure).put_array(mine.pixels).put_array(mine.aovs);
     const std::vector<std::vector<uint8_t>> all = group_.gather(reply.bytes());
     if (!group_.coordinator()) continue;
     // Rank order: which rank's part enters the film first changes no pixel (the parts are
@@ -270,6 +277,7 @@ void RankPassTracer::trace(const GpuRenderParams& pass, Film& film, const std::v
       const double seconds = from.get<double>();
       const std::string failure = from.get_string();
       const std::vector<GpuPixelPass> pixels = from.get_array<GpuPixelPass>();
+      const std::vector<float> aovs = from.get_array<float>();  // the first-hit layers' sums, or none
       if (parts[r].count == 0) continue;
       if (!ok) {
         working_[r] = false;
@@ -283,6 +291,11 @@ void RankPassTracer::trace(const GpuRenderParams& pass, Film& film, const std::v
         throw std::logic_error("RankPassTracer: a rank sent " + std::to_string(pixels.size()) + " pixels for a part of " +
                                std::to_string(parts[r].count));
       film.add_pass(pixels, parts[r].begin, pass.samples_per_pass, slots, half);
+      if (film.has_aovs()) {
+        if (aovs.size() != size_t(parts[r].count) * CLPT_AOV_CHANNELS)
+          throw std::logic_error("RankPassTracer: a rank sent no first-hit layers for its part");
+        film.add_aovs(aovs, parts[r].begin, pass.samples_per_pass, slots);
+      }
       rates_[r] = double(parts[r].count) * pass.samples_per_pass / seconds;
     }
   }

@@ -89,6 +89,7 @@ class RankPassTracer final : public PassTracer {
     double seconds = 0;
     std::string failure;
     std::vector<GpuPixelPass> pixels;
+    std::vector<float> aovs;  // the first-hit layers' sums (CLPT_AOV_CHANNELS per pixel), or none
   };
   PartResult trace_part(const GpuRenderParams& pass, PixelRange part, const std::vector<GpuSampleSlot>* slots);
 

@@ -112,6 +112,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   features.scene_loops = request.scene_loops;
   features.cpu_vector_bits = request.cpu_vector_bits;
   features.sphere_reads = request.sphere_reads;
+  features.aovs = request.aovs.any();  // the first-hit layers (--aovs): the render's request, not the scene's
 
   for (size_t i = 0; i < devices.size(); ++i) {
     DevicePlan d;
@@ -136,7 +137,8 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     }
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
     d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
-                                      triangle_count(scene), light_entry_bound(scene), environment_bytes_of(scene));
+                                      triangle_count(scene), light_entry_bound(scene), environment_bytes_of(scene),
+                                      d.features.aovs);
     plan.devices.push_back(std::move(d));
   }
   return plan;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "kernels/kernel_options.h"
+#include "render/aov_set.h"
 #include "render/fault_injection.h"
 #include "render/film.h"
 #include "render/renderer.h"
@@ -39,6 +40,9 @@ struct RenderRequest {
   SphereReads sphere_reads = SphereReads::Auto;            // --sphere-reads
   uint32_t paths_in_flight = 0;       // wavefront only; 0 chooses from the device
   bool use_kernel_cache = true;       // clpt's kernel binary cache (--no-cache turns it off)
+  // --aovs: the first-hit layers to record (any: CLPT_AOVS compiled, the film accumulates all
+  // three; the EXR holds those asked for). Neither a checkpoint nor a resumed film carries them.
+  AovSet aovs;
   // Megakernel launches are sized to take about this long (watchdogs); <= 0: one per pass.
   double launch_target_s = 0.075;
   // Polled between passes; when it becomes true the running pass finishes and the render stops.

@@ -6,6 +6,7 @@
 #include "render/rank_group.h"
 #include "scene/device_scene.h"
 #include "util/clock.h"
+#include "util/error.h"
 
 namespace clpt {
 namespace {
@@ -93,6 +94,10 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
 
   // 3. Passes until the sample count or the time budget is reached, or an interrupt.
   Film film = request.resume && coordinator ? *request.resume : Film(settings.width, settings.height);
+  if (request.aovs.any()) {  // the first-hit layers (--aovs): a checkpoint carries none to resume
+    if (request.resume) throw Error(ExitCode::Usage, "--aovs: a resumed render cannot have first-hit layers");
+    film.enable_aovs();
+  }
   const Film::Totals before = film.totals();  // a resumed film's samples are not this run's
   const auto t0 = Clock::now();
   const PassLoopResult passes = run_passes(tracer, params, film, pass_loop_options(plan, request));

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "kernels/aov_channels.h"
 #include "kernels/kernel_source.h"
 #include "util/clock.h"
 
@@ -25,6 +26,24 @@ ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
 
 Kernel Renderer::entry_point(const DeviceContext& ctx, const ProgramHandle& program, const char* name) const {
   return Kernel(program.get(), name, ctx.where(), cpu_vector_lanes_);
+}
+
+void Renderer::prepare_aovs(const DeviceContext& ctx, const ProgramHandle& program, const KernelFeatures& features) {
+  aovs_ = features.aovs;
+  if (aovs_) film_aovs_ = entry_point(ctx, program, "film_sum_aovs");
+}
+
+void Renderer::sum_aovs(DeviceContext& ctx, const GpuRenderParams& params, const Buffer& results, size_t local_size) {
+  if (!aovs_) return;
+  const size_t floats = size_t(params.pixel_count) * CLPT_AOV_CHANNELS;
+  if (aov_pass_.bytes() < floats * sizeof(float))
+    aov_pass_ = Buffer(ctx, floats * sizeof(float), CL_MEM_WRITE_ONLY, "first-hit layer sums");
+  film_aovs_.set_arg(0, params);
+  film_aovs_.set_arg(1, results);
+  film_aovs_.set_arg(2, aov_pass_);
+  ctx.launch(film_aovs_, params.pixel_count, local_size, "film_sum_aovs");
+  aov_sums_.resize(floats);
+  ctx.read(aov_pass_, aov_sums_.data(), floats * sizeof(float));
 }
 
 namespace {

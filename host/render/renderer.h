@@ -36,6 +36,11 @@ class Renderer {
   // Largest samples_per_pass this renderer accepts for `pixel_count` pixels (memory bound).
   virtual uint32_t max_samples_per_pass(uint32_t pixel_count) const = 0;
 
+  // The first-hit layers' sums of the last render_pass (kernels/film_aov.cl): CLPT_AOV_CHANNELS
+  // floats (kernels/aov_channels.h) per entry of its result, in the same order; empty when the
+  // kernel has no layers (KernelFeatures::aovs).
+  const std::vector<float>& aov_sums() const { return aov_sums_; }
+
   // Per-kernel device time so far (empty when not measured).
   virtual std::vector<StageTime> stage_times() const { return {}; }
 
@@ -65,9 +70,20 @@ class Renderer {
   // adaptive launch; for a uniform one a placeholder entry the kernels never read.
   const Buffer& upload_slots(DeviceContext& ctx, const GpuRenderParams& params, const GpuSampleSlot* slots);
 
+  // With the first-hit layers (features.aovs): film_sum_aovs of `program`, for sum_aovs. Called
+  // once, after the build; without the layers nothing.
+  void prepare_aovs(const DeviceContext& ctx, const ProgramHandle& program, const KernelFeatures& features);
+  // After a pass's jobs have left their results: their layers' sums into aov_sums() (blocking).
+  // Nothing without the layers.
+  void sum_aovs(DeviceContext& ctx, const GpuRenderParams& params, const Buffer& results, size_t local_size);
+
   double build_seconds_ = 0;
+  bool aovs_ = false;  // the kernel records the first-hit layers (set by prepare_aovs)
 
  private:
+  Kernel film_aovs_;
+  Buffer aov_pass_;
+  std::vector<float> aov_sums_;
   uint32_t cpu_vector_lanes_ = 0;  // of the features of the last build
   Buffer slots_;
 };

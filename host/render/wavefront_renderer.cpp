@@ -28,11 +28,13 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
   intersect_ = entry_point(ctx, program_, "wf_intersect");
   shade_ = entry_point(ctx, program_, "wf_shade");
   film_ = entry_point(ctx, program_, "film_sum_jobs");
+  prepare_aovs(ctx, program_, features);
 
   scene_ = upload_scene(ctx, scene);
   // `real` state fields are float, or double under the double preset.
   const size_t real_bytes = features.precision == Precision::Double ? 8 : 4;
 #define CLPT_REAL_BYTES real_bytes
+#define CLPT_HOST_AOVS aovs_  // the first-hit layers' fields only in a kernel that has them
   // One work-group of slots beyond the pool: wf_shade's work-items past the active count load their
   // own (unused) slot rather than a clamped one (wavefront.cl).
 #define CLPT_ALLOCATE(type, name, bytes, doc)                                              \
@@ -45,6 +47,7 @@ WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scen
     CLPT_PATH_SCRATCH_FIELDS(CLPT_ALLOCATE)
   }
 #undef CLPT_ALLOCATE
+#undef CLPT_HOST_AOVS
 #undef CLPT_REAL_BYTES
   survivors_ = Buffer(ctx, sizeof(cl_uint), CL_MEM_READ_WRITE, "survivor count");
 }
@@ -55,7 +58,7 @@ cl_uint WavefrontRenderer::bind(Kernel& kernel, cl_uint first_index, const std::
 }
 
 uint32_t WavefrontRenderer::max_samples_per_pass(uint32_t pixel_count) const {
-  return max_samples_per_pass_for(ctx_.device(), pixel_count);
+  return max_samples_per_pass_for(ctx_.device(), pixel_count, aovs_);
 }
 
 void WavefrontRenderer::record(const char* label, EventHandle event) {
@@ -120,7 +123,7 @@ uint32_t WavefrontRenderer::intersect_and_shade(const GpuRenderParams& params, u
 std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots) {
   sample_slots_ = &upload_slots(ctx_, params, slots);
   const uint64_t jobs = uint64_t(params.pixel_count) * params.samples_per_pass;
-  const size_t result_bytes = size_t(jobs) * sizeof(cl_float4);
+  const size_t result_bytes = size_t(jobs) * result_bytes_per_job(aovs_);
   if (results_.bytes() < result_bytes) results_ = Buffer(ctx_, result_bytes, CL_MEM_READ_WRITE, "job results");
 
   uint32_t active = 0;
@@ -146,6 +149,7 @@ std::vector<GpuPixelPass> WavefrontRenderer::render_pass(const GpuRenderParams& 
   std::vector<GpuPixelPass> out(params.pixel_count);
   ctx_.read(pass_, out.data(), pass_bytes);
   collect_times();
+  sum_aovs(ctx_, params, results_, local_size_);
   return out;
 }
 

@@ -21,7 +21,7 @@ class WavefrontRenderer : public Renderer {
                     uint32_t paths_in_flight = 0, size_t local_size = 0);
 
   std::vector<GpuPixelPass> render_pass(const GpuRenderParams& params, const GpuSampleSlot* slots = nullptr) override;
-  // One result slot (16 bytes) per sample of the pass: bounded to launch_buffer_budget()
+  // One result slot (result_bytes_per_job, render/limits.h) per sample of the pass: bounded to launch_buffer_budget()
   // = min(kMaxLaunchBufferBytes, the device's max allocation / 2), but at least one sample.
   uint32_t max_samples_per_pass(uint32_t pixel_count) const override;
   std::vector<StageTime> stage_times() const override;

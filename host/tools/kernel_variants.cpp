@@ -13,7 +13,7 @@ namespace {
 // Dimension positions in KernelVariant::choice.
 enum Dim {
   kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry,
-  kPbr, kLights, kCamera, kEnvironment, kDimCount
+  kPbr, kLights, kCamera, kEnvironment, kAovs, kDimCount
 };
 
 // Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
@@ -181,8 +181,9 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"lights", {"no-punctual", "point", "spot", "directional"}},
       {"camera", {"perspective", "orthographic"}},
       {"environment", {"no-environment", "environment-image", "environment-constant"}},
+      {"aovs", {"no-aovs", "aovs"}},
   };
-  static_assert(kDimCount == 13, "one entry per Dim");
+  static_assert(kDimCount == 14, "one entry per Dim");
   return dims;
 }
 
@@ -210,6 +211,7 @@ bool KernelVariant::has_pbr_volume() const { return choice[kPbr] == 3; }
 int KernelVariant::punctual_light() const { return choice[kLights]; }
 bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
 int KernelVariant::environment() const { return choice[kEnvironment]; }
+bool KernelVariant::aovs() const { return choice[kAovs] == 1; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -310,6 +312,7 @@ void apply_variant(const KernelVariant& variant, RenderRequest& request) {
   request.precision = variant.precision();
   request.generic_kernel = variant.generic();
   request.scene_loops = variant.scene_loops();
+  request.aovs.albedo = request.aovs.normal = request.aovs.depth = variant.aovs();
 }
 
 VariantProgram variant_program(const Scene& scene, const KernelVariant& variant) {
@@ -322,6 +325,7 @@ VariantProgram variant_program(const Scene& scene, const KernelVariant& variant)
   request.precision = variant.precision();
   request.generic_kernel = variant.generic();
   request.scene_loops = variant.scene_loops();
+  request.aovs.albedo = request.aovs.normal = request.aovs.depth = variant.aovs();
   DeviceInfo gpu;
   gpu.name = "a GPU compiler's target";
   gpu.type = "GPU";

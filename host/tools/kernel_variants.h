@@ -3,7 +3,8 @@
 // loop, precision, estimator, Russian roulette, specialised or generic, the specialised loops
 // unrolled or rolled, each material present or absent, spheres alone or a mesh and a hierarchy,
 // the glTF material with or without transmission, each punctual light kind, the camera's
-// projection, the environment light: none, an image or a constant) and every pair of values of two dimensions that can be rendered together (the book
+// projection, the environment light (none, an image or a constant), the first-hit layers of
+// --aovs) and every pair of values of two dimensions that can be rendered together (the book
 // estimator refuses punctual lights). Two test tiers use the same set:
 //   oclgrind  renders each on Oclgrind with its memory, race and API checks, and against PoCL
 //   gpucc     compiles each for NVIDIA (nvptx64) and AMD (amdgcn) with clang and libclc
@@ -52,6 +53,7 @@ struct KernelVariant {
   int punctual_light() const;         // 0 none, 1 point, 2 spot, 3 directional
   bool orthographic() const;          // the camera's projection
   int environment() const;            // 0 none, 1 an image (16 x 8 sky with a sun), 2 a constant colour
+  bool aovs() const;                  // the first-hit layers (--aovs: CLPT_AOVS)
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
