@@ -39,17 +39,20 @@ typedef struct SceneBuffers {
   __global const GpuBvhNode* nodes;
   __global const GpuTriangle* triangles;
   __global const GpuTriangleShading* triangle_shading;
+  __global const uchar* texturing; /* GpuTexturing and its sections (texture.cl); read with CLPT_HAS_TEXTURES only */
 } SceneBuffers;
 
 CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __global const GpuLight* lights,
                                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
-                                       __global const GpuTriangleShading* triangle_shading) {
+                                       __global const GpuTriangleShading* triangle_shading,
+                                       __global const uchar* texturing) {
   SceneBuffers s;
   s.spheres = spheres;
   s.lights = lights;
   s.nodes = nodes;
   s.triangles = triangles;
   s.triangle_shading = triangle_shading;
+  s.texturing = texturing;
   return s;
 }
 

@@ -105,7 +105,8 @@ LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, con
   }
   if (const auto t = p.attributes.find("TEXCOORD_0"); t != p.attributes.end()) {
     const std::vector<double> values = same_count("TEXCOORD_0", t->second, AccessorUse::Texcoord);
-    for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], values[i + 1]});
+    // glTF's (0, 0) is the image's top-left; clpt keeps OBJ's bottom-left (scene.h).
+    for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], 1 - values[i + 1]});
   }
   local.triangles = assemble(vertex_sequence(c, p, vertices, element), mode, element);
   c.triangles += local.triangles.size();
