@@ -332,30 +332,31 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, Vec3 d,
   if (triangle < 0 || r->material == CLPT_TEXTURE_NONE) return;
   __global const GpuMaterialTextures* mt = material_textures(texturing, r->material);
   const real b1 = s->triangle.b1, b2 = s->triangle.b2;
-  const float2 uv = triangle_uv(r, (float)((real)1 - b1 - b2), (float)b1, (float)b2);
+  float u, v;
+  triangle_uv(r, (float)((real)1 - b1 - b2), (float)b1, (float)b2, &u, &v);
   if (mt->base_color != CLPT_TEXTURE_NONE) {
-    const float4 c = clamp(texture_lookup(texturing, mt->base_color, uv.x, uv.y), 0.0f, 1.0f);
-    m->reflectance = v3_mul(m->reflectance, v3(c.x, c.y, c.z));
+    const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v);
+    m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
   }
 #if CLPT_HAS_PBR
   if (mt->metallic != CLPT_TEXTURE_NONE) {
-    const float4 c = clamp(texture_lookup(texturing, mt->metallic, uv.x, uv.y), 0.0f, 1.0f);
-    m->metallic *= rgba_channel(c, texture_at(texturing, mt->metallic)->channel);
+    const TexelRgba c = texture_lookup(texturing, mt->metallic, u, v);
+    m->metallic *= clamp(rgba_channel(c, texture_at(texturing, mt->metallic)->channel), 0.0f, 1.0f);
   }
   if (mt->roughness != CLPT_TEXTURE_NONE) {
-    const float4 c = clamp(texture_lookup(texturing, mt->roughness, uv.x, uv.y), 0.0f, 1.0f);
-    m->roughness *= rgba_channel(c, texture_at(texturing, mt->roughness)->channel);
+    const TexelRgba c = texture_lookup(texturing, mt->roughness, u, v);
+    m->roughness *= clamp(rgba_channel(c, texture_at(texturing, mt->roughness)->channel), 0.0f, 1.0f);
   }
 #endif
 #if CLPT_HAS_EMISSION_TEXTURES
   if (mt->emission != CLPT_TEXTURE_NONE) {
-    const float4 c = fmax(texture_lookup(texturing, mt->emission, uv.x, uv.y), 0.0f);
-    m->emission = v3_mul(m->emission, v3(c.x, c.y, c.z));
+    const TexelRgba c = texture_lookup(texturing, mt->emission, u, v);
+    m->emission = v3_mul(m->emission, v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f)));
   }
 #endif
 #if CLPT_HAS_NORMAL_MAPS
   if (mt->normal != CLPT_TEXTURE_NONE) {
-    const Vec3 mapped = normal_mapped(texturing, (uint)triangle, mt->normal, mt->normal_scale, uv, b1, b2, s->normal);
+    const Vec3 mapped = normal_mapped(texturing, (uint)triangle, mt->normal, mt->normal_scale, u, v, b1, b2, s->normal);
     const bool consistent = (v3_dot(d, mapped) < (real)0) == (v3_dot(d, s->triangle.geometric) < (real)0);
     s->normal = v3_select(consistent, mapped, s->normal);
   }

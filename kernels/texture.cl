@@ -53,17 +53,25 @@ CLPT_INLINE __global const GpuTexture* texture_at(__global const uchar* texturin
   return (__global const GpuTexture*)(texturing + header->textures) + index;
 }
 
-/* The coordinate s (in image widths) reduced to the range its wrap mode reads. */
+/* Linear RGBA, scalars rather than a float4: a vector-typed value in a work-item loop stops PoCL's
+ * vectoriser ("instruction return type cannot be vectorized"), and the pad keeps the struct out
+ * of registers (maths.cl, CLPT_ABI_PAD). Choices between an integer's values are bit tests
+ * (`wrap & 2u`), not comparisons with several constants, which LLVM turns into a switch, which
+ * stops the vectoriser too (path.cl, material_eval). */
+typedef struct TexelRgba {
+  float r, g, b, a;
+  CLPT_ABI_PAD(int, 1)
+} TexelRgba;
+
+/* The coordinate s (in image widths) reduced to the range its wrap mode reads (CLPT_WRAP_*:
+ * repeat 0, clamp 1, mirror 2). */
 CLPT_INLINE float texture_reduce(float s, uint wrap) {
-  float r = s;
-#if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_REPEAT)
-  r = wrap == CLPT_WRAP_REPEAT ? s - floor(s) : r;
-#endif
+  float r = s - floor(s); /* repeat */
 #if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_MIRROR)
-  r = wrap == CLPT_WRAP_MIRROR ? s - 2.0f * floor(0.5f * s) : r;
+  r = (wrap & 2u) != 0u ? s - 2.0f * floor(0.5f * s) : r;
 #endif
 #if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_CLAMP)
-  r = wrap == CLPT_WRAP_CLAMP ? clamp(s, -1.0f, 2.0f) : r;
+  r = (wrap & 1u) != 0u ? clamp(s, -1.0f, 2.0f) : r;
 #endif
   (void)wrap;
   return r;
@@ -71,72 +79,79 @@ CLPT_INLINE float texture_reduce(float s, uint wrap) {
 
 /* Texel index i (from a reduced coordinate: in [-1, 2n + 1]) wrapped into [0, n). */
 CLPT_INLINE uint texture_wrap_index(int i, int n, uint wrap) {
-  int r = clamp(i, 0, n - 1);
-#if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_REPEAT)
-  const int repeat = i < 0 ? i + n : (i >= n ? i - n : i);
-  r = wrap == CLPT_WRAP_REPEAT ? repeat : r;
-#endif
+  int r = i < 0 ? i + n : (i >= n ? i - n : i); /* repeat */
 #if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_MIRROR)
   const int m = i < 0 ? i + 2 * n : (i >= 2 * n ? i - 2 * n : i);
-  const int mirror = m < n ? m : 2 * n - 1 - m;
-  r = wrap == CLPT_WRAP_MIRROR ? mirror : r;
+  r = (wrap & 2u) != 0u ? (m < n ? m : 2 * n - 1 - m) : r;
+#endif
+#if CLPT_TEXTURE_WRAPS & (1 << CLPT_WRAP_CLAMP)
+  r = (wrap & 1u) != 0u ? i : r; /* clamped below */
 #endif
   (void)wrap;
-  return (uint)clamp(r, 0, n - 1); /* the clamp guards the buffer against any rounding surprise */
+  return (uint)clamp(r, 0, n - 1); /* also guards the buffer against any rounding surprise */
 }
 
 /* sRGB's decoding curve (IEC 61966-2-1). */
 CLPT_INLINE float srgb_decode(float c) { return c <= 0.04045f ? c * (1.0f / 12.92f) : pow((c + 0.055f) * (1.0f / 1.055f), 2.4f); }
 
-/* Channel k < channels of the texel whose first channel is sample `first`. */
-CLPT_INLINE float texel_channel(__global const uchar* texels, uint storage, uint first, uint k) {
+/* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). */
+CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint at) {
   float v = 0.0f;
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
-  v = storage == CLPT_TEXEL_U8 ? (float)texels[first + k] * (1.0f / 255.0f) : v;
+  v = (float)texels[at] * (1.0f / 255.0f);
 #endif
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_HALF)
-  v = storage == CLPT_TEXEL_HALF ? vload_half(first + k, (__global const half*)texels) : v;
+#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_HALF)
+  v = vload_half(at, (__global const half*)texels);
+#else
+  v = (storage & 1u) != 0u ? vload_half(at, (__global const half*)texels) : v;
+#endif
 #endif
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_FLOAT)
-  v = storage == CLPT_TEXEL_FLOAT ? ((__global const float*)texels)[first + k] : v;
+#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_FLOAT)
+  v = ((__global const float*)texels)[at];
+#else
+  v = (storage & 2u) != 0u ? ((__global const float*)texels)[at] : v;
+#endif
 #endif
   (void)storage;
   return v;
 }
 
-/* The texel (x, y) as linear RGBA. */
-CLPT_INLINE float4 texel_fetch(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {
+/* The texel (x, y) as linear RGBA. Every read stays inside the texel's own channels (channel k
+ * reads min(k, channels - 1)). */
+CLPT_INLINE TexelRgba texel_fetch(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {
   __global const uchar* texels = texturing + t->texels;
   const uint channels = t->channels;
   const uint storage = t->storage;
+  const uint last = channels - 1u;
   const uint first = (y * t->width + x) * channels;
-  const float c0 = texel_channel(texels, storage, first, 0u);
-  /* Only the channels the image has are read (a read past the last texel's would leave the buffer). */
-  const float c1 = channels > 1u ? texel_channel(texels, storage, first, 1u) : c0;
-  const float c2 = channels > 2u ? texel_channel(texels, storage, first, 2u) : c0;
-  const float c3 = channels > 3u ? texel_channel(texels, storage, first, 3u) : 1.0f;
-  float4 rgba = (float4)(c0, c0, c0, 1.0f);
-#if CLPT_TEXEL_CHANNELS & 2
-  rgba = channels == 2u ? (float4)(c0, c0, c0, c1) : rgba;
+  const float c0 = texel_sample(texels, storage, first);
+#if CLPT_TEXEL_CHANNELS == 1
+  const float c1 = c0, c2 = c0, c3 = c0;
+#else
+  const float c1 = texel_sample(texels, storage, first + min(1u, last));
+  const float c2 = texel_sample(texels, storage, first + min(2u, last));
+  const float c3 = texel_sample(texels, storage, first + min(3u, last));
 #endif
-#if CLPT_TEXEL_CHANNELS & 4
-  rgba = channels == 3u ? (float4)(c0, c1, c2, 1.0f) : rgba;
-#endif
-#if CLPT_TEXEL_CHANNELS & 8
-  rgba = channels == 4u ? (float4)(c0, c1, c2, c3) : rgba;
-#endif
+  const bool colour = channels >= 3u;          /* 3, 4: RGB; 1, 2: grey */
+  const bool alpha = (channels & 1u) == 0u;    /* 2, 4 */
+  TexelRgba rgba;
+  rgba.r = c0;
+  rgba.g = colour ? c1 : c0;
+  rgba.b = colour ? c2 : c0;
+  rgba.a = alpha ? (colour ? c3 : c1) : 1.0f;
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
-  if ((t->flags & CLPT_TEXTURE_SRGB) != 0u) {
-    rgba.x = srgb_decode(rgba.x);
-    rgba.y = srgb_decode(rgba.y);
-    rgba.z = srgb_decode(rgba.z);
-  }
+  const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u;
+  rgba.r = srgb ? srgb_decode(rgba.r) : rgba.r;
+  rgba.g = srgb ? srgb_decode(rgba.g) : rgba.g;
+  rgba.b = srgb ? srgb_decode(rgba.b) : rgba.b;
 #endif
   return rgba;
 }
 
 /* Texture `index` at mesh coordinates (u, v): linear RGBA. */
-CLPT_INLINE float4 texture_lookup(__global const uchar* texturing, uint index, float u, float v) {
+CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index, float u, float v) {
   __global const GpuTexture* t = texture_at(texturing, index);
   const float tu = t->transform[0] * u + t->transform[1] * v + t->transform[2];
   const float tv = t->transform[3] * u + t->transform[4] * v + t->transform[5];
@@ -150,14 +165,22 @@ CLPT_INLINE float4 texture_lookup(__global const uchar* texturing, uint index, f
   const int ix = (int)x0, iy = (int)y0;
   const uint ix0 = texture_wrap_index(ix, w, t->wrap_u), ix1 = texture_wrap_index(ix + 1, w, t->wrap_u);
   const uint iy0 = texture_wrap_index(iy, h, t->wrap_v), iy1 = texture_wrap_index(iy + 1, h, t->wrap_v);
-  const float4 a = texel_fetch(texturing, t, ix0, iy0), b = texel_fetch(texturing, t, ix1, iy0);
-  const float4 c = texel_fetch(texturing, t, ix0, iy1), d = texel_fetch(texturing, t, ix1, iy1);
-  return (1.0f - wy) * ((1.0f - wx) * a + wx * b) + wy * ((1.0f - wx) * c + wx * d);
+  const TexelRgba a = texel_fetch(texturing, t, ix0, iy0), b = texel_fetch(texturing, t, ix1, iy0);
+  const TexelRgba c = texel_fetch(texturing, t, ix0, iy1), d = texel_fetch(texturing, t, ix1, iy1);
+  const float w00 = (1.0f - wx) * (1.0f - wy), w10 = wx * (1.0f - wy), w01 = (1.0f - wx) * wy, w11 = wx * wy;
+  TexelRgba out;
+  out.r = w00 * a.r + w10 * b.r + w01 * c.r + w11 * d.r;
+  out.g = w00 * a.g + w10 * b.g + w01 * c.g + w11 * d.g;
+  out.b = w00 * a.b + w10 * b.b + w01 * c.b + w11 * d.b;
+  out.a = w00 * a.a + w10 * b.a + w01 * c.a + w11 * d.a;
+  return out;
 }
 
-/* Channel `channel` (0 to 3) of an RGBA value. */
-CLPT_INLINE float rgba_channel(float4 c, uint channel) {
-  return channel == 0u ? c.x : channel == 1u ? c.y : channel == 2u ? c.z : c.w;
+/* Channel `channel` (0 to 3) of an RGBA value, by bit tests. */
+CLPT_INLINE float rgba_channel(TexelRgba c, uint channel) {
+  const float low = (channel & 1u) != 0u ? c.g : c.r;
+  const float high = (channel & 1u) != 0u ? c.a : c.b;
+  return (channel & 2u) != 0u ? high : low;
 }
 
 /* A triangle's texturing record. */
@@ -171,9 +194,10 @@ CLPT_INLINE __global const GpuMaterialTextures* material_textures(__global const
   return (__global const GpuMaterialTextures*)(texturing + header->materials) + material;
 }
 
-/* The texture coordinates at barycentrics (b0, b1, b2) of a triangle. */
-CLPT_INLINE float2 triangle_uv(__global const GpuTriangleTexturing* r, float b0, float b1, float b2) {
-  return (float2)(b0 * r->uv0[0] + b1 * r->uv1[0] + b2 * r->uv2[0], b0 * r->uv0[1] + b1 * r->uv1[1] + b2 * r->uv2[1]);
+/* The texture coordinates at barycentrics (b0, b1, b2) of a triangle: *u, *v. */
+CLPT_INLINE void triangle_uv(__global const GpuTriangleTexturing* r, float b0, float b1, float b2, float* u, float* v) {
+  *u = b0 * r->uv0[0] + b1 * r->uv1[0] + b2 * r->uv2[0];
+  *v = b0 * r->uv0[1] + b1 * r->uv1[1] + b2 * r->uv2[1];
 }
 
 #if CLPT_HAS_EMISSION_TEXTURES
@@ -184,9 +208,10 @@ CLPT_INLINE Vec3 triangle_emission_scale(__global const uchar* texturing, uint t
   if (r->material != CLPT_TEXTURE_NONE) {
     const uint index = material_textures(texturing, r->material)->emission;
     if (index != CLPT_TEXTURE_NONE) {
-      const float2 uv = triangle_uv(r, (float)b0, (float)b1, (float)b2);
-      const float4 c = texture_lookup(texturing, index, uv.x, uv.y);
-      s = v3(c.x, c.y, c.z);
+      float u, v;
+      triangle_uv(r, (float)b0, (float)b1, (float)b2, &u, &v);
+      const TexelRgba c = texture_lookup(texturing, index, u, v);
+      s = v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f));
     }
   }
   return s;
@@ -198,8 +223,8 @@ CLPT_INLINE Vec3 triangle_emission_scale(__global const uchar* texturing, uint t
  * shading normal n: the triangle's interpolated tangent made orthogonal to n (Gram-Schmidt), the
  * bitangent w n x t (w: the tangent's sign), and the map's value 2 c - 1 in that frame, its x and
  * y times `scale` (glTF normalTexture.scale). n itself where the frame or the result degenerates. */
-CLPT_INLINE Vec3 normal_mapped(__global const uchar* texturing, uint triangle, uint index, float scale, float2 uv, real b1,
-                               real b2, Vec3 n) {
+CLPT_INLINE Vec3 normal_mapped(__global const uchar* texturing, uint triangle, uint index, float scale, float u, float v,
+                               real b1, real b2, Vec3 n) {
   __global const GpuTexturing* header = (__global const GpuTexturing*)texturing;
   __global const GpuTriangleTangents* tg = (__global const GpuTriangleTangents*)(texturing + header->tangents) + triangle;
   const real b0 = (real)1 - b1 - b2;
@@ -211,8 +236,8 @@ CLPT_INLINE Vec3 normal_mapped(__global const uchar* texturing, uint triangle, u
   const real sign = b0 * tg->t0[3] + b1 * tg->t1[3] + b2 * tg->t2[3] < (real)0 ? (real)-1 : (real)1;
   const Vec3 t = v3_scale(along, (real)1 / clpt_sqrt(length2 > (real)0 ? length2 : (real)1));
   const Vec3 b = v3_scale(v3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x), sign);
-  const float4 c = texture_lookup(texturing, index, uv.x, uv.y);
-  const real x = (real)((2.0f * c.x - 1.0f) * scale), y = (real)((2.0f * c.y - 1.0f) * scale), z = (real)(2.0f * c.z - 1.0f);
+  const TexelRgba c = texture_lookup(texturing, index, u, v);
+  const real x = (real)((2.0f * c.r - 1.0f) * scale), y = (real)((2.0f * c.g - 1.0f) * scale), z = (real)(2.0f * c.b - 1.0f);
   const Vec3 m = v3_add(v3_add(v3_scale(t, x), v3_scale(b, y)), v3_scale(n, z));
   const real m2 = v3_dot(m, m);
   const bool usable = length2 > (real)1e-12f && m2 > (real)1e-12f && is_finite_real(m2);

@@ -9,5 +9,6 @@
 __kernel void probe_texture(__global const uchar* texturing, __global const float4* in, __global float4* out) {
   const size_t i = get_global_id(0);
   const float4 q = in[i];
-  out[i] = texture_lookup(texturing, (uint)q.z, q.x, q.y);
+  const TexelRgba c = texture_lookup(texturing, (uint)q.z, q.x, q.y);
+  out[i] = (float4)(c.r, c.g, c.b, c.a);
 }
