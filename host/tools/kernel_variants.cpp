@@ -159,45 +159,40 @@ TextureImage pattern_image(const std::string& name, int w, int h, int channels, 
   return image;
 }
 
-// A textured tile on the floor in front of the balls (docs/textures.md). "textures": a Lambertian
-// with an 8-bit sRGB RGB base colour (repeat, bilinear). "textures-all": a Pbr tile with an 8-bit
-// RGBA base colour, a half two-channel metallic-roughness map (clamp), a float one-channel
-// emission map (mirror, nearest) and a half normal map: every storage, four channel counts, every
-// wrap mode, both filters, normal maps and emission textures.
-void add_textured_tile(Scene& scene, bool all) {
+// A textured tile on the floor in front of the balls (docs/textures.md): an 8-bit RGBA sRGB base
+// colour (repeat, bilinear) and a half normal map (clamp in u) on every textured variant; with
+// `pbr` (the variant's pbr dimension) the tile is a Pbr material and adds a half two-channel
+// metallic-roughness map and a float one-channel emission map (mirror, nearest): every storage,
+// four channel counts, every wrap mode, both filters, normal maps and emission textures.
+void add_textured_tile(Scene& scene, bool pbr) {
   TriangleMesh m;
   m.name = "variant_tile";
   m.positions = {{-1.2, 0.02, 2.2}, {1.2, 0.02, 2.2}, {1.2, 0.02, 3.4}, {-1.2, 0.02, 3.4}};
   m.uvs = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
   m.triangles = {{0, 2, 1}, {0, 3, 2}};
   const int first = int(scene.images.size());
-  TextureRef base;
-  base.image = first;
-  if (!all) {
-    scene.images.push_back(pattern_image("variant_rgb8", 8, 4, 3, TexelStorage::U8, ColorSpace::Srgb));
-    m.material.type = MaterialType::Lambertian;
-    m.material.reflectance = {0.8, 0.8, 0.8};
-    m.material.textures.base_color = base;
-  } else {
-    scene.images.push_back(pattern_image("variant_rgba8", 8, 4, 4, TexelStorage::U8, ColorSpace::Srgb));
+  scene.images.push_back(pattern_image("variant_rgba8", 8, 4, 4, TexelStorage::U8, ColorSpace::Srgb));
+  scene.images.push_back(pattern_image("variant_normal_half", 4, 4, 3, TexelStorage::Half, ColorSpace::Linear));
+  MaterialTextures& t = m.material.textures;
+  t.base_color.image = first;
+  t.normal.image = first + 1;
+  t.normal.wrap_u = TextureWrap::Clamp;
+  t.normal_scale = 0.5;
+  m.material.type = MaterialType::Lambertian;
+  m.material.reflectance = {0.8, 0.8, 0.8};
+  if (pbr) {
     scene.images.push_back(pattern_image("variant_mr_half", 4, 4, 2, TexelStorage::Half, ColorSpace::Linear));
     scene.images.push_back(pattern_image("variant_emission_float", 4, 2, 1, TexelStorage::Float, ColorSpace::Linear));
-    scene.images.push_back(pattern_image("variant_normal_half", 4, 4, 3, TexelStorage::Half, ColorSpace::Linear));
     m.material.type = MaterialType::Pbr;
-    m.material.reflectance = {0.9, 0.9, 0.9};
     m.material.metallic = 0.5;
     m.material.roughness = 0.6;
     m.material.emission = {0.1, 0.1, 0.1};
-    MaterialTextures& t = m.material.textures;
-    t.base_color = base;
-    t.metallic.image = t.roughness.image = first + 1;
+    t.metallic.image = t.roughness.image = first + 2;
     t.metallic.wrap_u = t.roughness.wrap_u = TextureWrap::Clamp;
     t.metallic.channel = 1;
-    t.emission.image = first + 2;
+    t.emission.image = first + 3;
     t.emission.wrap_u = t.emission.wrap_v = TextureWrap::Mirror;
     t.emission.filter = TextureFilter::Nearest;
-    t.normal.image = first + 3;
-    t.normal_scale = 0.5;
   }
   scene.meshes.push_back(m);
 }
@@ -218,7 +213,7 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"pbr", {"no-pbr", "pbr", "pbr-transmission", "pbr-volume"}},
       {"lights", {"no-punctual", "point", "spot", "directional"}},
       {"camera", {"perspective", "orthographic"}},
-      {"textures", {"no-textures", "textures", "textures-all"}},
+      {"textures", {"no-textures", "textures"}},
   };
   static_assert(kDimCount == 13, "one entry per Dim");
   return dims;
@@ -331,7 +326,7 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   }
   if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
   if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
-  if (variant.textures() != 0) add_textured_tile(scene, variant.textures() == 2);
+  if (variant.textures() != 0) add_textured_tile(scene, variant.has_pbr());
   if (variant.orthographic()) {
     scene.camera.projection = Projection::Orthographic;
     scene.camera.ortho_height = 6;

@@ -51,7 +51,7 @@ struct KernelVariant {
   bool has_pbr_volume() const;        // that ball is a volume (thickness > 0): refraction, Beer's law
   int punctual_light() const;         // 0 none, 1 point, 2 spot, 3 directional
   bool orthographic() const;          // the camera's projection
-  int textures() const;               // 0 none, 1 an 8-bit base colour, 2 every storage and map kind
+  int textures() const;               // 0 none, 1 a tile with every storage and map kind (docs/textures.md)
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
