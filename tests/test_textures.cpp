@@ -364,5 +364,59 @@ material = { type = "pbr", roughness = 0.4, metallic = 0.3)") +
   expect_same_image(a.film.mean_rgb(), b.film.mean_rgb());
 }
 
+// An emitting quad whose emission is the marker image lights a floor: next-event estimation
+// (which samples points on the quad and must read the texture there, light.cl) and the book
+// estimator (which finds the emission where a path hits the quad) converge to the same image.
+// Were the light samples to see the factor alone (white), the floor under the quad's red,
+// green and blue quarters would come out grey under nee.
+TEST(TextureScenes, EmissionTexturesLightAlikeUnderBothEstimators) {
+  install_scene_image_reader();
+  const std::string dir = temp_dir("emission");
+  write_marker(dir);
+  const auto scene = [&](const char* estimator) {
+    return std::string("[render]\nmax_bounces = 1\nestimator = \"") + estimator + R"("
+[camera]
+position = [0, 3, 0.001]
+look_at = [0, 0, 0]
+projection = "orthographic"
+height = 2
+[[mesh]]
+vertices = [[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]]
+quads = [[0, 1, 2, 3]]
+material = { type = "lambertian", reflectance = [0.8, 0.8, 0.8] }
+[[mesh]]
+vertices = [[-1, 0.5, 1], [1, 0.5, 1], [1, 0.5, -1], [-1, 0.5, -1]]
+uvs = [[0, 0], [1, 0], [1, 1], [0, 1]]
+quads = [[3, 2, 1, 0]]
+material = { type = "emitter", emission = { texture = "marker.png", filter = "nearest", scale = 3 } }
+)";
+  };
+  // The camera sits above the emitting quad, which hides the floor: look from below the light
+  // instead, through the gap, by placing the camera between the two (y = 0.25, looking down).
+  std::string nee = scene("nee"), book = scene("book");
+  for (std::string* text : {&nee, &book}) {
+    const size_t at = text->find("position = [0, 3, 0.001]");
+    text->replace(at, 24, "position = [0, 0.25, 0.001]");
+  }
+  const TestRender a = render_for_test(load_scene_string(nee, dir + "/nee.toml"), 8, 8, 256, 3);
+  const TestRender b = render_for_test(load_scene_string(book, dir + "/book.toml"), 8, 8, 256, 4);
+  const MeanVarianceImage ia = a.film.mean_variance(), ib = b.film.mean_variance();
+  const double z = sidak_z(4 * 3);
+  int coloured = 0;
+  for (int q = 0; q < 4; ++q) {
+    const int x0 = (q % 2) * 4, y0 = (q / 2) * 4;
+    const RegionStats ra = region_stats(ia.mean, ia.variance, 8, x0, y0, x0 + 4, y0 + 4);
+    const RegionStats rb = region_stats(ib.mean, ib.variance, 8, x0, y0, x0 + 4, y0 + 4);
+    for (int c = 0; c < 3; ++c) {
+      const double diff = ra.mean[c] - rb.mean[c];
+      EXPECT_LT(std::fabs(diff), z * std::sqrt(ra.variance_of_mean[c] + rb.variance_of_mean[c]) + 1e-6)
+          << "quadrant " << q << " channel " << c << ": nee " << ra.mean[c] << ", book " << rb.mean[c];
+    }
+    // The quadrants are tinted (not grey): the texture reaches the floor.
+    coloured += std::fabs(ra.mean[0] - ra.mean[1]) > 0.05 || std::fabs(ra.mean[1] - ra.mean[2]) > 0.05;
+  }
+  EXPECT_GE(coloured, 3);
+}
+
 }  // namespace
 }  // namespace clpt::test
