@@ -364,6 +364,29 @@ material = { type = "pbr", roughness = 0.4, metallic = 0.3)") +
   expect_same_image(a.film.mean_rgb(), b.film.mean_rgb());
 }
 
+// A glTF primitive's TANGENT is kept, in world space: xyz as a direction, w flipped where the
+// node mirrors (the bitangent w n x t must stay the mirrored one).
+TEST(TextureScenes, GltfTangentsFollowTheNodeTransform) {
+  const std::string dir = temp_dir("tangents");
+  for (const double sx : {1.0, -1.0}) {
+    GltfBuilder b;
+    const int position = b.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const int normal = b.accessor(std::vector<float>{0, 0, 1, 0, 0, 1, 0, 0, 1}, 5126, "VEC3");
+    const int tangent = b.accessor(std::vector<float>{1, 0, 0, 1, 1, 0, 0, -1, 0, 2, 0, 1}, 5126, "VEC4");
+    b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", position}, {"NORMAL", normal}, {"TANGENT", tangent}}}})},
+            {"scale", {sx, 1, 1}}});
+    const std::string file = dir + "/t.gltf";
+    std::ofstream(file) << b.gltf_embedded();
+    const Scene scene = load_scene_file(file);
+    const TriangleMesh& m = scene.meshes.at(0);
+    ASSERT_EQ(m.tangents.size(), 3u);
+    EXPECT_NEAR(m.tangents[0][0], sx, 1e-12);
+    EXPECT_NEAR(m.tangents[0][3], sx, 1e-12);       // w = 1, flipped by the mirror
+    EXPECT_NEAR(m.tangents[1][3], -sx, 1e-12);      // w = -1
+    EXPECT_NEAR(m.tangents[2][1], 1, 1e-12);        // (0, 2, 0) normalised
+  }
+}
+
 // An emitting quad whose emission is the marker image lights a floor: next-event estimation
 // (which samples points on the quad and must read the texture there, light.cl) and the book
 // estimator (which finds the emission where a path hits the quad) converge to the same image.
