@@ -40,12 +40,14 @@ typedef struct SceneBuffers {
   __global const GpuTriangle* triangles;
   __global const GpuTriangleShading* triangle_shading;
   __global const GpuEnvironment* environment; /* header and data (types.h), environment.cl */
+  __global const uchar* texturing; /* GpuTexturing and its sections (texture.cl); read with CLPT_HAS_TEXTURES only */
 } SceneBuffers;
 
 CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __global const GpuLight* lights,
                                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                                        __global const GpuTriangleShading* triangle_shading,
-                                       __global const GpuEnvironment* environment) {
+                                       __global const GpuEnvironment* environment,
+                                       __global const uchar* texturing) {
   SceneBuffers s;
   s.spheres = spheres;
   s.lights = lights;
@@ -53,6 +55,7 @@ CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __glob
   s.triangles = triangles;
   s.triangle_shading = triangle_shading;
   s.environment = environment;
+  s.texturing = texturing;
   return s;
 }
 

@@ -217,6 +217,12 @@ CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count
   s.sphere = is_triangle ? -1 : s.sphere;
   s.triangle = is_triangle ? (int)tri : -1;
   s.emission = v3_select(is_triangle, v3_load_global(scene->triangle_shading[tri].material.emission), s.emission);
+#if CLPT_HAS_EMISSION_TEXTURES
+  /* An emission texture scales the sampled point's radiance as it scales a BSDF hit's (path.cl). */
+  s.emission = v3_select(is_triangle,
+                         v3_mul(s.emission, triangle_emission_scale(scene->texturing, tri, (real)1 - root, b1, root - b1)),
+                         s.emission);
+#endif
   s.target = v3_select(is_triangle, triangle_offset_origin(&point, v3_scale(direction, (real)-1)), s.target);
 #endif
 

@@ -36,6 +36,7 @@
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment,
+                           __global const uchar* texturing,
                            const GpuRenderParams params, __global const GpuSampleSlot* slots,
                            __global float* results) {
   __local uint alive_of[CLPT_LOCKSTEP_GROUP];
@@ -55,7 +56,7 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
   CLPT_PATH_FIELDS(CLPT_PATH_BUFFERS_OF, CLPT_LOCKSTEP_STATE) /* the wavefront's buffers, but the job index */
 #undef CLPT_LOCKSTEP_STATE
 #endif
-  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment);
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment, texturing);
   const uint jobs = job_count(&params);
   const uint job = (uint)get_global_id(0);
   const uint lid = (uint)get_local_id(0);
@@ -153,9 +154,10 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
 __kernel void render_paths(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
                            __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment,
+                           __global const uchar* texturing,
                            const GpuRenderParams params, __global const GpuSampleSlot* slots,
                            __global float* results) {
-  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment);
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment, texturing);
   const uint job = (uint)get_global_id(0);
   if (job >= job_count(&params)) return;
   PathState path = path_begin(&params, job_pixel(&params, slots, job), job_sample(&params, slots, job));

@@ -30,8 +30,8 @@
  * CLPT_HAS_GLASS, CLPT_HAS_MIRROR, CLPT_HAS_PBR (bsdf_pbr.cl), CLPT_HAS_PBR_TRANSMISSION and
  * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
  * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
- * CLPT_HAS_BVH (traversal, bvh.cl), CLPT_HAS_TRIANGLE_LIGHTS (light.cl) and CLPT_HAS_ENVIRONMENT
- * (environment.cl) compile those in;
+ * CLPT_HAS_BVH (traversal, bvh.cl), CLPT_HAS_TRIANGLE_LIGHTS (light.cl), CLPT_HAS_ENVIRONMENT
+ * (environment.cl) and CLPT_HAS_TEXTURES (texture.cl, apply_textures below) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
@@ -46,6 +46,7 @@
 #include "bvh.cl"
 #include "bsdf.cl"
 #include "bsdf_pbr.cl"
+#include "texture.cl"
 #include "light.cl"
 #include "environment.cl"
 
@@ -327,6 +328,53 @@ CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Ve
   return s;
 }
 
+#if CLPT_HAS_TEXTURES
+/* The hit triangle's textures (texture.cl) applied to its material and shading normal: each
+ * textured parameter is its factor times the lookup (colours and metallic/roughness clamped to
+ * [0, 1], emission to >= 0). A normal map's normal is used only when the arriving ray sees it from
+ * the same side as the geometric normal (else the unmapped shading normal stays), and
+ * leaves_consistently then drops any direction on opposite sides of it and of the geometric
+ * normal: no light leaks through the surface (docs/textures.md). */
+CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, Vec3 d, SurfacePoint* s, SurfaceMaterial* m) {
+  __global const uchar* texturing = scene->texturing;
+  __global const GpuTriangleTexturing* r = triangle_texturing(texturing, triangle < 0 ? 0u : (uint)triangle);
+  if (triangle < 0 || r->material == CLPT_TEXTURE_NONE) return;
+  __global const GpuMaterialTextures* mt = material_textures(texturing, r->material);
+  const real b1 = s->triangle.b1, b2 = s->triangle.b2;
+  float u, v;
+  triangle_uv(r, (float)((real)1 - b1 - b2), (float)b1, (float)b2, &u, &v);
+  if (mt->base_color != CLPT_TEXTURE_NONE) {
+    const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v);
+    m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
+  }
+#if CLPT_HAS_PBR
+  if (mt->metallic != CLPT_TEXTURE_NONE) {
+    const TexelRgba c = texture_lookup(texturing, mt->metallic, u, v);
+    m->metallic *= clamp(rgba_channel(c, texture_at(texturing, mt->metallic)->channel), 0.0f, 1.0f);
+  }
+  if (mt->roughness != CLPT_TEXTURE_NONE) {
+    const TexelRgba c = texture_lookup(texturing, mt->roughness, u, v);
+    m->roughness *= clamp(rgba_channel(c, texture_at(texturing, mt->roughness)->channel), 0.0f, 1.0f);
+  }
+#endif
+#if CLPT_HAS_EMISSION_TEXTURES
+  if (mt->emission != CLPT_TEXTURE_NONE) {
+    const TexelRgba c = texture_lookup(texturing, mt->emission, u, v);
+    m->emission = v3_mul(m->emission, v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f)));
+  }
+#endif
+#if CLPT_HAS_NORMAL_MAPS
+  if (mt->normal != CLPT_TEXTURE_NONE) {
+    const Vec3 mapped = normal_mapped(texturing, (uint)triangle, mt->normal, mt->normal_scale, u, v, b1, b2, s->normal);
+    const bool consistent = (v3_dot(d, mapped) < (real)0) == (v3_dot(d, s->triangle.geometric) < (real)0);
+    s->normal = v3_select(consistent, mapped, s->normal);
+  }
+#else
+  (void)d;
+#endif
+}
+#endif
+
 /* Whether direction `dir` leaving the surface is on the same side of the geometric normal as of
  * the shading normal (always, on a sphere). */
 CLPT_INLINE bool leaves_consistently(const SurfacePoint* s, Vec3 dir) {
@@ -515,9 +563,9 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   const bool on_triangle = hit.triangle >= 0;
   __global const GpuMaterial* stored =
       on_triangle ? &scene->triangle_shading[hit.triangle].material : &scene->spheres[index].material;
-  const SurfaceMaterial material = material_of(stored);
+  SurfaceMaterial material = material_of(stored);
 #else
-  const SurfaceMaterial material = sphere_material(scene->spheres, index);
+  SurfaceMaterial material = sphere_material(scene->spheres, index);
 #if !CLPT_MATERIAL_BY_SELECT
   __global const GpuMaterial* stored = &scene->spheres[index].material;
 #endif
@@ -535,7 +583,10 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   bool scatters = !missed && !emitter && path->bounce < params->max_bounces;
 
   const real t = missed ? (real)0 : hit.t;
-  const SurfacePoint surface = surface_point_of(scene, hit, path->origin, path->direction, t);
+  SurfacePoint surface = surface_point_of(scene, hit, path->origin, path->direction, t);
+#if CLPT_HAS_TEXTURES
+  apply_textures(scene, missed ? -1 : hit.triangle, path->direction, &surface, &material);
+#endif
   const Vec3 normal = surface.normal;
   /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */
   const int sphere_index = surface.on_triangle ? -1 : index;

@@ -24,6 +24,7 @@
 
 #include "types.h"
 #include "maths.cl"
+#include "texture.cl"
 
 /* A ray in the sheared frame of the watertight test, set up once per ray. */
 typedef struct ShearedRay {
@@ -101,6 +102,9 @@ typedef struct TriangleSurface {
   Vec3 geometric;   /* unit geometric normal (v1 - v0) x (v2 - v0) */
   Vec3 shading;     /* unit shading normal: interpolated when the mesh has normals, else geometric */
   real error;       /* bound on |point - exact point| per coordinate, world units */
+#if CLPT_HAS_TEXTURES
+  real b1, b2;      /* barycentrics of v1 and v2 (texture coordinates, texture.cl) */
+#endif
   CLPT_ABI_PAD(int, 3)
 } TriangleSurface;
 
@@ -121,6 +125,10 @@ CLPT_INLINE TriangleSurface triangle_point(__global const GpuTriangle* tri, real
   const Vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
   s.geometric = v3_normalize(v3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x));
   s.shading = s.geometric;
+#if CLPT_HAS_TEXTURES
+  s.b1 = b1;
+  s.b2 = b2;
+#endif
   return s;
 }
 

@@ -113,6 +113,74 @@ typedef struct GpuTriangleShading {
   float pad;
 } GpuTriangleShading;
 
+/* Textures (kernels/texture.cl, docs/textures.md): one read-only byte buffer, the "texturing"
+ * buffer, holds a GpuTexturing header at byte 0 and the sections it points to, each 16-byte
+ * aligned: the texture table, the textured materials, one GpuTriangleTexturing per triangle
+ * (same index as GpuTriangle), one GpuTriangleTangents per triangle (normal maps only) and the
+ * texels. Scenes without textures get a placeholder that no kernel reads. */
+#define CLPT_TEXTURE_NONE 0xffffffffu
+#define CLPT_TEXEL_U8 0u    /* one byte per channel, value / 255 */
+#define CLPT_TEXEL_HALF 1u  /* binary16 per channel (vload_half) */
+#define CLPT_TEXEL_FLOAT 2u /* float per channel */
+#define CLPT_WRAP_REPEAT 0u
+#define CLPT_WRAP_CLAMP 1u
+#define CLPT_WRAP_MIRROR 2u
+#define CLPT_TEXTURE_SRGB 1u    /* GpuTexture.flags: 8-bit texels are sRGB-encoded (decoded per texel) */
+#define CLPT_TEXTURE_NEAREST 2u /* GpuTexture.flags: nearest texel, else bilinear */
+
+typedef struct GpuTexturing { /* 16 bytes: byte offsets of the sections */
+  clpt_u32 textures;  /* GpuTexture[] */
+  clpt_u32 materials; /* GpuMaterialTextures[] */
+  clpt_u32 triangles; /* GpuTriangleTexturing[], one per triangle */
+  clpt_u32 tangents;  /* GpuTriangleTangents[], one per triangle; 0: none */
+} GpuTexturing;
+
+/* One use of an image: 64 bytes. Mesh coordinates (u, v) (OBJ's convention: (0, 0) at the
+ * image's bottom-left) map to u' = t0 u + t1 v + t2, v' = t3 u + t4 v + t5, read at image
+ * position x = u' width, y = (1 - v') height (texel centres at i + 0.5). */
+typedef struct GpuTexture {
+  clpt_u32 texels;    /* byte offset of the top-left texel; rows top to bottom, channels interleaved */
+  clpt_u32 width;     /* texels */
+  clpt_u32 height;
+  clpt_u32 channels;  /* 1 to 4 */
+  clpt_u32 storage;   /* CLPT_TEXEL_* */
+  clpt_u32 wrap_u;    /* CLPT_WRAP_* */
+  clpt_u32 wrap_v;
+  clpt_u32 flags;     /* CLPT_TEXTURE_SRGB | CLPT_TEXTURE_NEAREST */
+  float transform[6]; /* t0 .. t5 above */
+  clpt_u32 channel;   /* a scalar parameter reads this channel of the RGBA lookup */
+  float pad;
+} GpuTexture;
+
+/* A textured material's textures (indices into the texture table, or CLPT_TEXTURE_NONE): each
+ * multiplies its factor in the triangle's GpuMaterial. 32 bytes. */
+typedef struct GpuMaterialTextures {
+  clpt_u32 base_color;   /* RGB x reflectance (the base colour) */
+  clpt_u32 metallic;     /* its channel x metallic */
+  clpt_u32 roughness;    /* its channel x roughness */
+  clpt_u32 emission;     /* RGB x emission */
+  clpt_u32 normal;       /* tangent-space normal map */
+  float normal_scale;    /* scales the map's x and y (glTF normalTexture.scale) */
+  clpt_u32 pad[2];
+} GpuMaterialTextures;
+
+/* Texture coordinates of a triangle's corners and its material's textures: 32 bytes. */
+typedef struct GpuTriangleTexturing {
+  float uv0[2];
+  float uv1[2];
+  float uv2[2];
+  clpt_u32 material;  /* index into the GpuMaterialTextures, or CLPT_TEXTURE_NONE: untextured */
+  clpt_u32 pad;
+} GpuTriangleTexturing;
+
+/* Per-corner tangents of a normal-mapped triangle: xyz unit (world space), w the bitangent's
+ * sign (bitangent = w cross(normal, tangent)), as glTF's TANGENT. 48 bytes. */
+typedef struct GpuTriangleTangents {
+  float t0[4];
+  float t1[4];
+  float t2[4];
+} GpuTriangleTangents;
+
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
 #define CLPT_ESTIMATOR_BOOK 0u /* the book's: light only where a path hits an emitter */
 #define CLPT_ESTIMATOR_NEE 1u  /* next-event estimation + MIS with BSDF sampling (light.cl) */
@@ -270,6 +338,33 @@ typedef struct GpuPixelPass {
   X(GpuTriangleShading, has_normals)                                                              \
   X(GpuTriangleShading, material)                                                                 \
   X(GpuTriangleShading, light_area_density)                                                       \
+  X(GpuTexturing, textures)                                                                       \
+  X(GpuTexturing, materials)                                                                      \
+  X(GpuTexturing, triangles)                                                                      \
+  X(GpuTexturing, tangents)                                                                       \
+  X(GpuTexture, texels)                                                                           \
+  X(GpuTexture, width)                                                                            \
+  X(GpuTexture, height)                                                                           \
+  X(GpuTexture, channels)                                                                         \
+  X(GpuTexture, storage)                                                                          \
+  X(GpuTexture, wrap_u)                                                                           \
+  X(GpuTexture, wrap_v)                                                                           \
+  X(GpuTexture, flags)                                                                            \
+  X(GpuTexture, transform)                                                                        \
+  X(GpuTexture, channel)                                                                          \
+  X(GpuMaterialTextures, base_color)                                                              \
+  X(GpuMaterialTextures, metallic)                                                                \
+  X(GpuMaterialTextures, roughness)                                                               \
+  X(GpuMaterialTextures, emission)                                                                \
+  X(GpuMaterialTextures, normal)                                                                  \
+  X(GpuMaterialTextures, normal_scale)                                                            \
+  X(GpuTriangleTexturing, uv0)                                                                    \
+  X(GpuTriangleTexturing, uv1)                                                                    \
+  X(GpuTriangleTexturing, uv2)                                                                    \
+  X(GpuTriangleTexturing, material)                                                               \
+  X(GpuTriangleTangents, t0)                                                                      \
+  X(GpuTriangleTangents, t1)                                                                      \
+  X(GpuTriangleTangents, t2)                                                                      \
   X(GpuSphere, surface_point)                                                                     \
   X(GpuSphere, radius)                                                                            \
   X(GpuSphere, surface_normal)                                                                    \
@@ -331,7 +426,8 @@ typedef struct GpuPixelPass {
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass)
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass) \
+  X(GpuTexturing) X(GpuTexture) X(GpuMaterialTextures) X(GpuTriangleTexturing) X(GpuTriangleTangents)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the
  * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
@@ -357,6 +453,11 @@ CLPT_CHECK_SIZE(GpuRenderParams, 120)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)
 CLPT_CHECK_SIZE(GpuEnvironment, 64)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
+CLPT_CHECK_SIZE(GpuTexturing, 16)
+CLPT_CHECK_SIZE(GpuTexture, 64)
+CLPT_CHECK_SIZE(GpuMaterialTextures, 32)
+CLPT_CHECK_SIZE(GpuTriangleTexturing, 32)
+CLPT_CHECK_SIZE(GpuTriangleTangents, 48)
 #undef CLPT_CHECK_SIZE
 
 #endif /* CLPT_TYPES_H */

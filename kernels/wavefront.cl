@@ -63,11 +63,12 @@ __kernel void wf_generate(const GpuRenderParams params, __global const GpuSample
 /* Takes every scene buffer, as wf_shade does (the host binds them alike); reads only geometry. */
 __kernel void wf_intersect(__global const GpuSphere* spheres, __global const GpuLight* lights,
                            __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
-                           __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment, const GpuRenderParams params,
+                           __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment,
+                           __global const uchar* texturing, const GpuRenderParams params,
                            __global const GpuSampleSlot* sample_slots, uint count CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS) {
   const uint i = (uint)get_global_id(0);
   if (i >= count) return;
-  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment);
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment, texturing);
   const PathState p = path_load(i, &params, sample_slots CLPT_STATE_ARGS);
   const Hit hit = path_intersect(&p, &scene, &params);
   hit_t[i] = hit.t;
@@ -93,7 +94,8 @@ __kernel void wf_intersect(__global const GpuSphere* spheres, __global const Gpu
 #endif
 __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLight* lights,
                        __global const GpuBvhNode* nodes, __global const GpuTriangle* triangles,
-                       __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment, const GpuRenderParams params,
+                       __global const GpuTriangleShading* triangle_shading, __global const GpuEnvironment* environment,
+                       __global const uchar* texturing, const GpuRenderParams params,
                        __global const GpuSampleSlot* sample_slots, uint count, __global float* results,
                        __global volatile uint* survivors CLPT_SCRATCH_PARAMS CLPT_STATE_PARAMS CLPT_TO_PARAMS) {
   __local uint rank_of[CLPT_WAVEFRONT_GROUP]; /* survives (0/1), then the survivor's rank */
@@ -107,7 +109,7 @@ __kernel void wf_shade(__global const GpuSphere* spheres, __global const GpuLigh
   hit.t = hit_t[slot];
   hit.sphere = active ? hit_sphere[slot] : -1;
   hit.triangle = active ? hit_triangle[slot] : -1;
-  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment);
+  const SceneBuffers scene = scene_buffers(spheres, lights, nodes, triangles, triangle_shading, environment, texturing);
   path_shade(&p, hit, &scene, &params);
   const uint job_index = job[slot];
   if (active && !p.alive) job_result_store(results, job_index, job_count(&params), p.radiance, p.segments);

@@ -27,12 +27,12 @@ class GltfBuilder {
   }
 
   // An accessor over `values` stored as `component` (5121 ubyte, 5123 ushort, 5125 uint, 5126
-  // float), `count` elements of `type` ("SCALAR", "VEC2", "VEC3").
+  // float), `count` elements of `type` ("SCALAR", "VEC2", "VEC3", "VEC4").
   template <typename T>
   int accessor(const std::vector<T>& values, int component, const std::string& type, bool normalized = false) {
     std::string bytes(values.size() * sizeof(T), '\0');
     std::memcpy(bytes.data(), values.data(), bytes.size());
-    const size_t components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : 3;
+    const size_t components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC4" ? 4 : 3;
     nlohmann::json a = {{"bufferView", view(bytes)}, {"componentType", component},
                         {"count", values.size() / components}, {"type", type}};
     if (normalized) a["normalized"] = true;

@@ -1,10 +1,12 @@
 #include "kernels/kernel_options.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <sstream>
 
 #include "cl/pocl_vectoriser.h"
 #include "scene/device_scene.h"
+#include "scene/device_textures.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -211,6 +213,13 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.environment = !scene.environment              ? EnvironmentFeature::None
                   : scene.environment->file.empty() ? EnvironmentFeature::Constant
                                                     : EnvironmentFeature::Image;
+  const TextureUse textures = texture_use(scene);
+  f.textures = textures.any;
+  f.texel_storages = textures.storages;
+  f.texel_channels = textures.channel_counts;
+  f.texture_wraps = textures.wraps;
+  f.normal_maps = textures.normal_maps;
+  f.emission_textures = textures.emission;
   f.spheres_in_bvh = spheres_in_hierarchy(scene);
   const std::vector<bool> in_loop = loop_spheres(scene);
   f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
@@ -291,6 +300,11 @@ std::string kernel_build_options(const KernelFeatures& features) {
     if (features.orthographic) o << " -DCLPT_HAS_ORTHOGRAPHIC=1";
     if (features.environment != EnvironmentFeature::None)
       o << " -DCLPT_HAS_ENVIRONMENT=" << static_cast<int>(features.environment);
+    if (features.textures)
+      o << " -DCLPT_HAS_TEXTURES=1 -DCLPT_TEXEL_STORAGES=" << features.texel_storages
+        << " -DCLPT_TEXEL_CHANNELS=" << features.texel_channels << " -DCLPT_TEXTURE_WRAPS=" << features.texture_wraps
+        << " -DCLPT_HAS_NORMAL_MAPS=" << (features.normal_maps ? 1 : 0)
+        << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0);
   }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
@@ -389,6 +403,27 @@ std::string explain_kernel_options(const KernelFeatures& features) {
             ? "a constant colour (seen by escaping rays; not light-sampled: BSDF sampling is already ideal for it)"
             : "left out (none in the scene: escaping rays are black)")
     << "\n";
+  {
+    const auto names = [](uint32_t mask, std::initializer_list<const char*> words) {
+      std::string out;
+      uint32_t bit = 0;
+      for (const char* w : words) {
+        if (mask & (1u << bit)) out += (out.empty() ? "" : ", ") + std::string(w);
+        ++bit;
+      }
+      return out;
+    };
+    o << "  textures: "
+      << (features.generic ? std::string("compiled (generic kernel: every storage, channel count and wrap mode)")
+          : features.textures
+              ? "compiled (a textured material on a mesh: " + names(features.texel_storages, {"8-bit", "half", "float"}) +
+                    " texels; " + names(features.texel_channels, {"1", "2", "3", "4"}) + " channel(s); " +
+                    names(features.texture_wraps, {"repeat", "clamp", "mirror"}) + " wrap; normal maps " +
+                    (features.normal_maps ? "compiled" : "left out") + "; emission textures " +
+                    (features.emission_textures ? "compiled" : "left out") + ")"
+              : std::string("left out (no textured material)"))
+      << "\n";
+  }
   o << "  camera: "
     << (features.generic ? "perspective or orthographic at run time (generic kernel)"
         : features.orthographic ? "orthographic compiled (the scene's camera is orthographic)"

@@ -141,6 +141,16 @@ struct KernelFeatures {
   // None (absent: none in a specialised kernel; the generic kernel compiles Image).
   EnvironmentFeature environment = EnvironmentFeature::Image;
   bool punctual_lights() const { return point_lights || spot_lights || directional_lights; }
+  // Textures (kernels/texture.cl, docs/textures.md), named like the Pbr features only when on:
+  // CLPT_HAS_TEXTURES (a textured material on a mesh), then what the scene's textures use, as bit
+  // masks: CLPT_TEXEL_STORAGES (1 << CLPT_TEXEL_*), CLPT_TEXEL_CHANNELS (1 << (channels - 1)),
+  // CLPT_TEXTURE_WRAPS (1 << CLPT_WRAP_*); CLPT_HAS_NORMAL_MAPS, CLPT_HAS_EMISSION_TEXTURES.
+  bool textures = true;
+  uint32_t texel_storages = 7;
+  uint32_t texel_channels = 15;
+  uint32_t texture_wraps = 7;
+  bool normal_maps = true;
+  bool emission_textures = true;
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
   // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks
   // lights by power (nee and a scene with an emitting mesh, or generic).

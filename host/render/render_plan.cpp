@@ -6,6 +6,7 @@
 #include "render/megakernel_renderer.h"
 #include "render/pass_schedule.h"
 #include "render/wavefront_renderer.h"
+#include "scene/device_textures.h"
 #include "util/error.h"
 
 namespace clpt {
@@ -135,12 +136,15 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
       d.paths_in_flight =
           request.paths_in_flight ? request.paths_in_flight : WavefrontRenderer::default_paths_in_flight(d.device);
     }
+    // Every texel goes into one buffer: it must fit the device's largest allocation.
+    if (d.device.max_alloc_bytes > 0) check_texture_memory(scene, d.device.max_alloc_bytes, "device '" + d.device.name + "'");
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
     d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
                                       triangle_count(scene), light_entry_bound(scene), environment_bytes_of(scene),
                                       d.features.aovs);
     plan.devices.push_back(std::move(d));
   }
+  plan.textures = explain_textures(scene);
   return plan;
 }
 
@@ -159,6 +163,7 @@ std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>&
     << (plan.power_of_two_halves && plan.target_spp > 0 ? half_films_line(plan) : std::string())
     << ", kernel cache "
     << (plan.use_kernel_cache ? "on" : "off (--no-cache)") << "\n";
+  if (!plan.textures.empty()) o << "textures (docs/textures.md):\n" << plan.textures;
   for (const DevicePlan& d : plan.devices) {
     o << "device " << d.position << ": " << d.device.label() << "\n";
     o << "  execution form: " << execution_form_name(d.form) << " (" << d.form_reason << "), kernel file "

@@ -49,6 +49,7 @@ struct RenderPlan {
   Precision precision = Precision::Robust;
   bool use_kernel_cache = true;
   std::vector<DevicePlan> devices;  // in --device list order
+  std::string textures;  // one line per texture image: size, storage, device bytes (device_textures.h); "" for none
 };
 
 // The plan for `request` on `devices` (already selected from the --device value). Pure: no

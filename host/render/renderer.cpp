@@ -67,6 +67,10 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   set.triangles = upload_entries(ctx, scene.triangles, "triangles");
   set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
   set.environment = upload_entries(ctx, scene.environment, "environment");
+  // The texturing bytes (device_textures.h), or a zeroed header no kernel reads.
+  std::vector<GpuTexturing> placeholder;
+  set.texturing = scene.texturing.empty() ? upload_entries(ctx, placeholder, "texturing")
+                                          : upload_entries(ctx, scene.texturing, "texturing");
   return set;
 }
 
@@ -83,7 +87,7 @@ const Buffer& Renderer::upload_slots(DeviceContext& ctx, const GpuRenderParams& 
 
 cl_uint Renderer::bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene) {
   for (const Buffer* b : {&scene.spheres, &scene.lights, &scene.nodes, &scene.triangles, &scene.triangle_shading,
-                           &scene.environment})
+                           &scene.environment, &scene.texturing})
     kernel.set_arg(first++, *b);
   return first;
 }

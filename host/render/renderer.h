@@ -60,10 +60,10 @@ class Renderer {
   // ever empty (OpenCL has no zero-sized buffers): an unused one holds a zeroed placeholder entry;
   // GpuRenderParams' counts say how many entries count.
   struct SceneBufferSet {
-    Buffer spheres, lights, nodes, triangles, triangle_shading, environment;
+    Buffer spheres, lights, nodes, triangles, triangle_shading, environment, texturing;
   };
   static SceneBufferSet upload_scene(DeviceContext& ctx, const DeviceScene& scene);
-  // Sets the six scene buffers as arguments first, first + 1, ...; returns the next index.
+  // Sets the seven scene buffers as arguments first, first + 1, ...; returns the next index.
   static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
 
   // The launch's slot buffer: `slots` (params.pixel_count of them) written to the device for an

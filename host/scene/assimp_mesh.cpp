@@ -35,7 +35,7 @@ bool point_or_line(unsigned n) { return n < 3; }
 // Appends one assimp mesh's triangles and vertices to `out` (vertices renumbered after those
 // already there); `with_normals` says whether the merged mesh keeps normals. Faces of other
 // arities are left out: the caller counts them.
-void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& out) {
+void append_mesh(const aiMesh& m, unsigned index, bool with_normals, bool with_uvs, LocalMesh& out) {
   const size_t base = out.positions.size();
   if (base + m.mNumVertices > std::numeric_limits<uint32_t>::max())
     throw MeshFileError("more than 2^32 - 1 vertices (clpt's triangles index vertices with 32 bits)");
@@ -43,6 +43,13 @@ void append_mesh(const aiMesh& m, unsigned index, bool with_normals, LocalMesh& 
     const aiVector3D& p = m.mVertices[v];
     out.positions.push_back({double(p.x), double(p.y), double(p.z)});
     if (with_normals) out.normals.push_back({double(m.mNormals[v].x), double(m.mNormals[v].y), double(m.mNormals[v].z)});
+    if (with_uvs) {
+      // assimp's coordinates are OBJ's ((0, 0) at the image's bottom-left; its glTF reader flips v).
+      const aiVector3D& uv = m.mTextureCoords[0][v];
+      if (!std::isfinite(uv.x) || !std::isfinite(uv.y))
+        throw MeshFileError(element("texture coordinate", v, index) + " is not finite");
+      out.uvs.push_back({double(uv.x), double(uv.y)});
+    }
   }
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];
@@ -119,7 +126,12 @@ MeshFileContents mesh_from_assimp(const aiScene& scene) {
       !triangle_meshes.empty() && std::all_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals);
   if (!with_normals && std::any_of(triangle_meshes.begin(), triangle_meshes.end(), has_normals))
     out.warnings.push_back("normals ignored: only some of the file's meshes have them (geometric normals shade)");
-  for (unsigned i : triangle_meshes) append_mesh(*scene.mMeshes[i], i, with_normals, out.mesh);
+  // Texture coordinates (the first set) likewise only when every merged mesh has them.
+  const auto has_uvs = [&](unsigned i) { return scene.mMeshes[i]->HasTextureCoords(0); };
+  const bool with_uvs = !triangle_meshes.empty() && std::all_of(triangle_meshes.begin(), triangle_meshes.end(), has_uvs);
+  if (!with_uvs && std::any_of(triangle_meshes.begin(), triangle_meshes.end(), has_uvs))
+    out.warnings.push_back("texture coordinates ignored: only some of the file's meshes have them");
+  for (unsigned i : triangle_meshes) append_mesh(*scene.mMeshes[i], i, with_normals, with_uvs, out.mesh);
   if (out.mesh.triangles.empty()) throw MeshFileError("the mesh file has no triangles");
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/device_textures.h"
 #include "scene/environment_map.h"
 #include "scene/light_pick.h"
 #include "scene/vec3_ops.h"
@@ -291,6 +292,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   out.bvh = build_bvh_with(builder, prims);
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
+  out.texturing = pack_texturing(scene, out.bvh.triangle_order);
   if (spheres_in_bvh) {
     sphere_order.insert(sphere_order.end(), out.bvh.sphere_order.begin(), out.bvh.sphere_order.end());
     for (GpuBvhNode& node : out.bvh.nodes)

@@ -25,6 +25,9 @@ struct DeviceScene {
   // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
   std::vector<GpuTriangle> triangles;
   std::vector<GpuTriangleShading> triangle_shading;
+  // The textures, every triangle's texture coordinates and tangents (device_textures.h); empty
+  // without textures.
+  std::vector<uint8_t> texturing;
   Bvh bvh;  // over the triangles, and the spheres when they are in it; no nodes when neither
   // The environment light's header and data (types.h GpuEnvironment, scene/environment_map.h);
   // an empty one (kind NONE) when the scene has none.

@@ -25,6 +25,8 @@ Kind kind_of(AccessorUse use) {
       return {TINYGLTF_TYPE_VEC2, "VEC2",
               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
               true};
+    case AccessorUse::Tangent:
+      return {TINYGLTF_TYPE_VEC4, "VEC4", {TINYGLTF_COMPONENT_TYPE_FLOAT}, false};
     case AccessorUse::Indices:
       break;
   }
@@ -187,7 +189,10 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, Acces
                                   uint64_t total_bytes) {
   const tinygltf::Accessor& a = checked_accessor(model, index, use, referrer);
   const std::string element = accessor_name(index);
-  const int components = use == AccessorUse::Indices ? 1 : use == AccessorUse::Texcoord ? 2 : 3;
+  const int components = use == AccessorUse::Indices    ? 1
+                         : use == AccessorUse::Texcoord ? 2
+                         : use == AccessorUse::Tangent  ? 4
+                                                        : 3;
   const uint64_t element_bytes = component_bytes(a.componentType) * uint64_t(components);
   std::vector<double> values;
   if (a.bufferView < 0) {

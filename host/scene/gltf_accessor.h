@@ -13,7 +13,7 @@
 namespace clpt {
 
 // What a use of an accessor allows (the specification's table of mesh attributes, and indices).
-enum class AccessorUse { Position, Normal, Texcoord, Indices };
+enum class AccessorUse { Position, Normal, Texcoord, Indices, Tangent };
 
 // The elements of accessors[index], `components` doubles each (3 for VEC3 ...), one after the
 // other. Normalised integers are mapped as the specification says (unsigned: c / max; signed:

@@ -387,8 +387,12 @@ bool refuse_write(std::string* err, const std::string&, const std::vector<unsign
   if (err) *err = "clpt writes no glTF files";
   return false;
 }
-bool keep_image_undecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                          void*) {
+// Images are not decoded here: their encoded bytes (a buffer view's or a data: URI's; the
+// checks above bound them by the file's size) are kept for gltf_material.cpp, which decodes them
+// through the scene's image reader.
+bool keep_image_undecoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                          const unsigned char* bytes, int size, void*) {
+  if (bytes && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -427,6 +431,9 @@ const std::vector<std::string>& gltf_supported_extensions() {
       "KHR_materials_transmission", "KHR_materials_volume",       "KHR_texture_transform"};
   return names;
 }
+
+std::string gltf_decode_uri(const std::string& uri, const std::string& element) { return decode_uri(uri, element); }
+void gltf_check_relative(const std::string& path, const std::string& element) { check_relative(path, element); }
 
 GltfDocument parse_gltf_document(std::string_view bytes, const std::string& path) {
   if (bytes.size() > kMaxBufferBytes)

@@ -16,7 +16,7 @@
 namespace clpt {
 
 // The extensions clpt reads (docs/gltf.md); a file may require these and no others.
-// KHR_texture_transform is accepted too: textures are not read yet, so it changes nothing.
+// (KHR_texture_transform among them: textures, docs/textures.md.)
 const std::vector<std::string>& gltf_supported_extensions();
 
 struct GltfDocument {
@@ -29,6 +29,12 @@ struct GltfDocument {
   uint64_t total_bytes = 0;
   std::vector<std::string> warnings;  // "ELEMENT: MESSAGE", without the file
 };
+
+// A URI's %XX escapes decoded ('+' a space), and the check that it names a relative path inside
+// the glTF file's folder (no scheme, no absolute path, no '..'): buffers' rules, which images
+// follow too. Throw GltfError naming `element`.
+std::string gltf_decode_uri(const std::string& uri, const std::string& element);
+void gltf_check_relative(const std::string& path, const std::string& element);
 
 // `bytes`: the file's contents; `path`: the file, whose folder holds its external buffers.
 // Throws GltfError ("ELEMENT: MESSAGE") on anything malformed.

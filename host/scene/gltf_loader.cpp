@@ -21,7 +21,9 @@
 #include "scene/gltf_material.h"
 #include "scene/gltf_nodes.h"
 #include "scene/gltf_primitives.h"
+#include "scene/texture_load.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace clpt {
 namespace {
@@ -30,6 +32,7 @@ constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;
 
 struct Contents {
   GltfDocument document;
+  std::vector<TextureImage> images;
   std::vector<NodeInstance> nodes;
   std::vector<TriangleMesh> meshes;
   std::vector<PunctualLight> lights;
@@ -41,7 +44,7 @@ Contents read_contents(std::string_view bytes, const std::string& path, const Af
   c.document = parse_gltf_document(bytes, path);
   const tinygltf::Model& model = c.document.model;
   std::vector<std::string>& warnings = c.document.warnings;
-  const std::vector<Material> materials = convert_materials(model, warnings);
+  const std::vector<Material> materials = convert_materials(model, path, c.images, warnings);
   c.nodes = scene_nodes(model, chosen_scene(model), root);
   PrimitiveContext primitives{model, materials, c.document.total_bytes, {}, {}};
   for (const NodeInstance& instance : c.nodes) append_node_meshes(primitives, instance, c.meshes);
@@ -93,7 +96,11 @@ Scene load_gltf_scene(std::string_view bytes, const std::string& path, const Glt
     Contents c = read_contents(bytes, path, Affine{});
     Scene scene;
     scene.file = path;
-    scene.file_hash = c.document.hash;
+    // The document's hash, chained over its images (external files are not in it).
+    uint64_t hash = fnv1a64(c.document.hash);
+    for (const TextureImage& image : c.images) hash = fnv1a64(image.file + '\0' + image.hash + '\n', hash);
+    scene.file_hash = c.images.empty() ? c.document.hash : hex64(hash);
+    scene.images = std::move(c.images);
     scene.settings.estimator = "nee";
     scene.meshes = std::move(c.meshes);
     scene.lights = std::move(c.lights);
@@ -108,6 +115,7 @@ Scene load_gltf_scene(std::string_view bytes, const std::string& path, const Glt
       m.file_hash = scene.file_hash;
       m.where = SourcePosition{path, 0, 0};
     }
+    check_textured_meshes(scene);
     return scene;
   } catch (const GltfError& e) {
     throw Error(ExitCode::BadScene, path + ": " + e.what());
@@ -126,6 +134,8 @@ GltfContents load_gltf_contents(const std::string& path, const MeshPlacement& pl
   out.lights = std::move(c.lights);
   out.warnings = std::move(c.document.warnings);
   out.hash = c.document.hash;
+  out.images = std::move(c.images);
+  for (TriangleMesh& m : out.meshes) m.file = path;  // the TOML loader renames it as the table names it
   return out;
 }
 

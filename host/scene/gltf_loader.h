@@ -37,6 +37,7 @@ struct GltfContents {
   std::vector<PunctualLight> lights;
   std::vector<std::string> warnings;  // "ELEMENT: MESSAGE"
   std::string hash;                   // the file's and its buffers' (GltfDocument::hash)
+  std::vector<TextureImage> images;   // its materials' images (their TextureRefs index these)
 };
 GltfContents load_gltf_contents(const std::string& path, const MeshPlacement& placement);
 

@@ -1,11 +1,16 @@
 // glTF materials -> Material (gltf_material.h).
 #include "scene/gltf_material.h"
 
+#include <array>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <map>
 #include <sstream>
 
+#include "scene/gltf_document.h"
 #include "scene/gltf_error.h"
+#include "scene/texture_load.h"
 
 namespace clpt {
 namespace {
@@ -61,24 +66,142 @@ const tinygltf::Value* extension(const tinygltf::Material& m, const char* name, 
   return &it->second;
 }
 
-void check_texture(int index, const tinygltf::Model& model, const std::string& element, bool& used) {
-  if (index < 0) return;
+// The images already loaded, by (image index, colour space): one decode per image and use.
+struct ImageCache {
+  const tinygltf::Model& model;
+  const std::string& path;
+  std::vector<TextureImage>& images;
+  std::map<std::pair<int, ColorSpace>, int> loaded;
+};
+
+std::string extension_for(const std::string& mime, const std::string& uri) {
+  if (mime == "image/png") return ".png";
+  if (mime == "image/jpeg") return ".jpg";
+  const size_t dot = uri.rfind('.');
+  if (!uri.empty() && dot != std::string::npos && uri.find('/', dot) == std::string::npos && uri.size() - dot <= 6)
+    return uri.substr(dot);
+  return ".png";
+}
+
+// Image `index` in colour space `space`, loaded once; `element` names the referring texture.
+int load_image(ImageCache& cache, int index, ColorSpace space, const std::string& element) {
+  if (const auto it = cache.loaded.find({index, space}); it != cache.loaded.end()) return it->second;
+  const tinygltf::Image& image = cache.model.images[size_t(index)];
+  const std::string image_element = "images[" + std::to_string(index) + "]";
+  const std::string what = cache.path + ": " + element + " (" + image_element + ")";
+  int loaded;
+  if (!image.uri.empty()) {
+    // An external file: a relative path inside the glTF file's folder, as buffers' URIs are.
+    const std::string name = gltf_decode_uri(image.uri, image_element + ".uri");
+    gltf_check_relative(name, image_element + ".uri");
+    const std::string file = (std::filesystem::path(cache.path).parent_path() / name).string();
+    loaded = load_texture_image(cache.images, file, file, space, what);
+  } else {
+    // The GLB's buffer view or a data: URI: tinygltf handed over the encoded bytes (gltf_document.cpp).
+    if (image.image.empty()) gltf_fail(image_element, "the image has no bytes");
+    const std::string_view bytes(reinterpret_cast<const char*>(image.image.data()), image.image.size());
+    loaded = load_texture_image_bytes(cache.images, bytes, extension_for(image.mimeType, image.uri),
+                                      cache.path + ": " + image_element, space, what);
+  }
+  cache.loaded[{index, space}] = loaded;
+  return loaded;
+}
+
+TextureWrap wrap_of(int mode, const std::string& element) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return TextureWrap::Repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return TextureWrap::Clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return TextureWrap::Mirror;
+  }
+  gltf_fail(element, std::to_string(mode) + " is not a wrap mode (10497, 33071 or 33648)");
+}
+
+// KHR_texture_transform's offset, rotation and scale, conjugated into clpt's coordinates (OBJ's:
+// v' = 1 - v of glTF's; scene.h): M = F T R S F with F(u, v) = (u, 1 - v).
+std::array<double, 6> texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& element,
+                                        std::vector<std::string>& warnings) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (it == extensions.end()) return {1, 0, 0, 0, 1, 0};
+  const std::string e = element + ".extensions.KHR_texture_transform";
+  if (!it->second.IsObject()) gltf_fail(e, "must be an object");
+  const tinygltf::Value& t = it->second;
+  const auto pair = [&](const char* key, double fallback, std::array<double, 2>& out) {
+    out = {fallback, fallback};
+    if (!t.Has(key)) return;
+    const tinygltf::Value& v = t.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+      gltf_fail(e + "." + key, "must be an array of 2 numbers");
+    out = {v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble()};
+    if (!std::isfinite(out[0]) || !std::isfinite(out[1])) gltf_fail(e + "." + key, "must be finite");
+  };
+  std::array<double, 2> offset, scale;
+  pair("offset", 0, offset);
+  pair("scale", 1, scale);
+  const double rotation = ext_number(t, "rotation", 0, -1e6, 1e6, e);
+  if (t.Has("texCoord")) warnings.push_back(e + ".texCoord: clpt reads TEXCOORD_0 only");
+  const double c = std::cos(rotation), s = std::sin(rotation);
+  // glTF: u' = a u + b v + ox, v' = d u + e v + oy (the extension's T R S).
+  const double a = scale[0] * c, b = scale[1] * s, d = -scale[0] * s, ee = scale[1] * c;
+  return {a, -b, b + offset[0], -d, ee, 1 - ee - offset[1]};
+}
+
+// The texture `info` (a textureInfo or normalTextureInfo: index, texCoord, extensions) as a
+// TextureRef, its image loaded in colour space `space`.
+TextureRef texture_ref(ImageCache& cache, int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
+                       ColorSpace space, const std::string& element, std::vector<std::string>& warnings) {
+  TextureRef ref;
+  if (index < 0) return ref;
+  const tinygltf::Model& model = cache.model;
   if (size_t(index) >= model.textures.size())
     gltf_fail(element + ".index", std::to_string(index) + " is out of range (the file has " +
                                       std::to_string(model.textures.size()) + " textures)");
-  used = true;
+  if (tex_coord != 0) warnings.push_back(element + ".texCoord: " + std::to_string(tex_coord) + "; clpt reads TEXCOORD_0 only");
+  const tinygltf::Texture& texture = model.textures[size_t(index)];
+  const std::string t = "textures[" + std::to_string(index) + "]";
+  if (texture.source < 0) gltf_fail(t + ".source", "missing (clpt reads no texture extensions' image sources)");
+  if (size_t(texture.source) >= model.images.size())
+    gltf_fail(t + ".source", std::to_string(texture.source) + " is out of range (the file has " +
+                                 std::to_string(model.images.size()) + " images)");
+  if (texture.sampler >= 0) {
+    if (size_t(texture.sampler) >= model.samplers.size())
+      gltf_fail(t + ".sampler", std::to_string(texture.sampler) + " is out of range (the file has " +
+                                    std::to_string(model.samplers.size()) + " samplers)");
+    const tinygltf::Sampler& sampler = model.samplers[size_t(texture.sampler)];
+    const std::string s = "samplers[" + std::to_string(texture.sampler) + "]";
+    ref.wrap_u = wrap_of(sampler.wrapS, s + ".wrapS");
+    ref.wrap_v = wrap_of(sampler.wrapT, s + ".wrapT");
+    // Magnification decides: clpt reads no mipmaps (docs/textures.md).
+    if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = TextureFilter::Nearest;
+  }
+  ref.uv_transform = texture_transform(extensions, element, warnings);
+  ref.where = cache.path + ": " + element + ".index";
+  ref.image = load_image(cache, texture.source, space, element);
+  return ref;
 }
 
-// Textures are not read yet; their indices are checked and their use reported.
-bool uses_textures(const tinygltf::Material& m, const tinygltf::Model& model, const std::string& element) {
-  bool used = false;
-  check_texture(m.pbrMetallicRoughness.baseColorTexture.index, model, element + ".pbrMetallicRoughness.baseColorTexture", used);
-  check_texture(m.pbrMetallicRoughness.metallicRoughnessTexture.index, model,
-                element + ".pbrMetallicRoughness.metallicRoughnessTexture", used);
-  check_texture(m.normalTexture.index, model, element + ".normalTexture", used);
-  check_texture(m.occlusionTexture.index, model, element + ".occlusionTexture", used);
-  check_texture(m.emissiveTexture.index, model, element + ".emissiveTexture", used);
-  return used;
+void read_textures(ImageCache& cache, const tinygltf::Material& m, const std::string& element, Material& out,
+                   std::vector<std::string>& warnings) {
+  const auto& pbr = m.pbrMetallicRoughness;
+  const std::string p = element + ".pbrMetallicRoughness.";
+  MaterialTextures& t = out.textures;
+  t.base_color = texture_ref(cache, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                             pbr.baseColorTexture.extensions, ColorSpace::Srgb, p + "baseColorTexture", warnings);
+  // Roughness in G, metalness in B (linear).
+  const auto& mr = pbr.metallicRoughnessTexture;
+  t.roughness = texture_ref(cache, mr.index, mr.texCoord, mr.extensions, ColorSpace::Linear, p + "metallicRoughnessTexture", warnings);
+  t.metallic = t.roughness;
+  t.roughness.channel = 1;
+  t.metallic.channel = 2;
+  t.emission = texture_ref(cache, m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
+                           ColorSpace::Srgb, element + ".emissiveTexture", warnings);
+  t.normal = texture_ref(cache, m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                         ColorSpace::Linear, element + ".normalTexture", warnings);
+  t.normal_scale = m.normalTexture.scale;
+  if (!std::isfinite(t.normal_scale) || std::fabs(t.normal_scale) > 100)
+    gltf_fail(element + ".normalTexture.scale", "must be a number in [-100, 100]");
+  if (m.occlusionTexture.index >= 0 && size_t(m.occlusionTexture.index) >= cache.model.textures.size())
+    gltf_fail(element + ".occlusionTexture.index", std::to_string(m.occlusionTexture.index) + " is out of range (the file has " +
+                                                       std::to_string(cache.model.textures.size()) + " textures)");
 }
 
 void read_extensions(const tinygltf::Material& m, const std::string& element, Material& out) {
@@ -131,18 +254,21 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
-std::vector<Material> convert_materials(const tinygltf::Model& model, std::vector<std::string>& warnings) {
+std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& path,
+                                        std::vector<TextureImage>& images, std::vector<std::string>& warnings) {
   std::vector<Material> out;
-  std::vector<std::string> textured, transparent;
+  std::vector<std::string> transparent, occluded;
+  ImageCache cache{model, path, images, {}};
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const std::string element = "materials[" + std::to_string(i) + "]";
     const tinygltf::Material& m = model.materials[i];
     out.push_back(convert(m, element));
-    if (uses_textures(m, model, element)) textured.push_back(element);
+    read_textures(cache, m, element, out.back(), warnings);
     if (m.alphaMode != "OPAQUE") transparent.push_back(element);
+    if (m.occlusionTexture.index >= 0) occluded.push_back(element);
   }
-  if (!textured.empty())
-    warnings.push_back(joined(textured) + ": textures are not read yet; their factors alone are rendered");
+  if (!occluded.empty())
+    warnings.push_back(joined(occluded) + ": occlusionTexture ignored (a path tracer finds occlusion itself)");
   if (!transparent.empty())
     warnings.push_back(joined(transparent) + ": alphaMode MASK and BLEND are not rendered yet; these surfaces render opaque");
   return out;

@@ -1,8 +1,8 @@
 // glTF materials (glTF 2.0 section 3.9) as clpt's MaterialType::Pbr: the metallic-roughness
 // factors, emissiveFactor x KHR_materials_emissive_strength, KHR_materials_ior,
-// KHR_materials_transmission and KHR_materials_volume, doubleSided. Factors only: textures are
-// a later issue (a warning lists the materials that have them), and alpha is not rendered (a
-// warning lists the materials whose alpha would matter).
+// KHR_materials_transmission and KHR_materials_volume, doubleSided, and the textures below.
+// Alpha is not rendered (a warning lists the materials whose alpha would matter), nor is the
+// occlusion texture (a path tracer computes occlusion).
 #pragma once
 
 #include "scene/tinygltf_config.h"
@@ -15,7 +15,11 @@
 namespace clpt {
 
 // Every material of the file, in order, each value checked against the schema's range; warnings
-// ("ELEMENT: MESSAGE") appended to `warnings`.
-std::vector<Material> convert_materials(const tinygltf::Model& model, std::vector<std::string>& warnings);
+// ("ELEMENT: MESSAGE") appended to `warnings`. Textures (docs/textures.md): baseColorTexture,
+// metallicRoughnessTexture, emissiveTexture and normalTexture with their samplers and
+// KHR_texture_transform; their images (external files beside `path`, the GLB's buffer views,
+// data: URIs) are decoded into `images`.
+std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& path,
+                                        std::vector<TextureImage>& images, std::vector<std::string>& warnings);
 
 }  // namespace clpt

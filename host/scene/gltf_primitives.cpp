@@ -80,7 +80,8 @@ std::vector<std::array<uint32_t, 3>> assemble(const std::vector<uint32_t>& v, in
 
 // The primitive's vertices and triangles in world space (normals not yet normalised).
 LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, const Affine& world, int mode,
-                          const std::string& element, std::vector<std::array<double, 2>>& uvs) {
+                          const std::string& element, std::vector<std::array<double, 2>>& uvs,
+                          std::vector<std::array<double, 4>>& tangents) {
   LocalMesh local;
   const int position = p.attributes.at("POSITION");
   const size_t vertices = accessor_count(c.model, position, AccessorUse::Position, element + ".attributes.POSITION");
@@ -105,7 +106,23 @@ LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, con
   }
   if (const auto t = p.attributes.find("TEXCOORD_0"); t != p.attributes.end()) {
     const std::vector<double> values = same_count("TEXCOORD_0", t->second, AccessorUse::Texcoord);
-    for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], values[i + 1]});
+    // glTF's (0, 0) is the image's top-left; clpt keeps OBJ's bottom-left (scene.h).
+    for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], 1 - values[i + 1]});
+  }
+  if (const auto t = p.attributes.find("TANGENT"); t != p.attributes.end()) {
+    // xyz a direction (the world transform's linear part), w the bitangent's sign: flipped where
+    // the transform mirrors, as the normal's side and the winding are (docs/textures.md).
+    const std::vector<double> values = same_count("TANGENT", t->second, AccessorUse::Tangent);
+    const bool mirrored = determinant(world.linear) < 0;
+    for (size_t i = 0; i + 3 < values.size(); i += 4) {
+      const Vec3 d = transform_vector(world, {values[i], values[i + 1], values[i + 2]});
+      const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      if (!(length > 0) || (values[i + 3] != 1 && values[i + 3] != -1))
+        gltf_fail(element + ".attributes.TANGENT",
+                  "tangent " + std::to_string(i / 4) + " must have a non-zero xyz and w = 1 or -1");
+      const double w = mirrored ? -values[i + 3] : values[i + 3];
+      tangents.push_back({d[0] / length, d[1] / length, d[2] / length, w});
+    }
   }
   local.triangles = assemble(vertex_sequence(c, p, vertices, element), mode, element);
   c.triangles += local.triangles.size();
@@ -139,7 +156,7 @@ void append_primitive(PrimitiveContext& c, const NodeInstance& instance, int mes
   m.name = (mesh.name.empty() ? "meshes[" + std::to_string(mesh_index) + "]" : mesh.name) + "/primitive " + std::to_string(index);
   m.gltf_element = "nodes[" + std::to_string(instance.node) + "] " + element;
   m.material = p.material >= 0 ? c.materials[size_t(p.material)] : default_material();
-  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, m.uvs);
+  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, m.uvs, m.tangents);
   const size_t dropped = place_mesh(local, m);  // the identity placement: drops degenerate triangles
   for (size_t i = 0; i < m.positions.size(); ++i)
     for (double x : m.positions[i])

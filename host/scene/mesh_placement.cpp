@@ -71,6 +71,7 @@ size_t place_mesh(const LocalMesh& local, TriangleMesh& mesh) {
   mesh.normals.reserve(local.normals.size());
   for (const Vec3& n : local.normals)
     mesh.normals.push_back(normal_with(rotate, mesh.placement.scale, n));
+  if (!local.uvs.empty()) mesh.uvs = local.uvs;  // a glTF primitive sets mesh.uvs itself
   size_t dropped = 0;
   mesh.triangles.reserve(local.triangles.size());
   for (const auto& t : local.triangles) {

@@ -27,6 +27,7 @@ Vec3 place_normal(const MeshPlacement& placement, const Vec3& n);
 struct LocalMesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
+  std::vector<std::array<double, 2>> uvs;  // empty, or one per vertex (OBJ's convention, scene.h)
   std::vector<std::array<uint32_t, 3>> triangles;
 };
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/texture.h"
+
 namespace clpt {
 
 using Vec3 = std::array<double, 3>;
@@ -49,6 +51,8 @@ struct Material {
   // glTF doubleSided (TOML meshes and every non-Pbr material: true). docs/materials.md says how a
   // single-sided surface seen from behind is rendered.
   bool double_sided = true;
+  // Parameters read from images (docs/textures.md): each multiplies its value above.
+  MaterialTextures textures;
 };
 
 // KHR_lights_punctual in physical units, converted by the loader: a light of I candela has a
@@ -99,9 +103,13 @@ struct TriangleMesh {
   std::string file_hash;  // FNV-1a 64 of the mesh file's bytes, hex; "" inline
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;  // empty, or positions.size() entries
-  // Texture coordinates (glTF TEXCOORD_0), one per position, or empty. Stored as each format
-  // defines them (glTF: (0,0) at the image's top-left); textures (a later issue) read them.
+  // Texture coordinates, one per position, or empty, in OBJ's convention: (0, 0) at the image's
+  // bottom-left. The glTF loader flips TEXCOORD_0's v (glTF's (0, 0) is the top-left) and
+  // conjugates KHR_texture_transform likewise (docs/textures.md).
   std::vector<std::array<double, 2>> uvs;
+  // Tangents (glTF TANGENT: xyz, w the bitangent's sign), one per position, in world space, or
+  // empty: normal-mapped meshes without them get generated ones (device_textures.cpp).
+  std::vector<std::array<double, 4>> tangents;
   std::vector<std::array<uint32_t, 3>> triangles;
   Material material;
   SourcePosition where;  // position of the [[mesh]] table
@@ -178,6 +186,7 @@ struct Scene {
   std::vector<TriangleMesh> meshes;  // the [[mesh]] tables, in file order; then glTF primitives
   std::vector<PunctualLight> lights;  // KHR_lights_punctual (glTF), in node order
   std::optional<Environment> environment;  // [environment] or --environment; none: escaping rays are black
+  std::vector<TextureImage> images;   // every image a material's TextureRef names
   // Non-fatal findings of the loader ("FILE:LINE:COLUMN: ..."), e.g. degenerate triangles dropped;
   // the commands print each as "clpt: warning: ...".
   std::vector<std::string> warnings;

@@ -27,10 +27,14 @@
 #include "scene/mesh_placement.h"
 #include "scene/pbr_params.h"
 #include "scene/scene_validate.h"
+#include "scene/texture_load.h"
 #include "util/error.h"
 #include "util/hash.h"
 
 namespace clpt {
+
+// The TOML key of a tangent-space normal map (docs/textures.md).
+constexpr const char* kNormalMapKey = "normal_map";
 
 std::string SourcePosition::str() const {
   // A position without a line (never produced by the loader) still names the file.
@@ -459,17 +463,17 @@ MaterialType parse_material_type(const TableReader& material) {
 std::vector<std::string> material_parameters(MaterialType type) {
   switch (type) {
     case MaterialType::Lambertian:
-      return {"reflectance"};
+      return {"reflectance", kNormalMapKey};
     case MaterialType::Phong:
-      return {"reflectance", "exponent"};
+      return {"reflectance", "exponent", kNormalMapKey};
     case MaterialType::Glass:
-      return {"reflectance", "ior"};
+      return {"reflectance", "ior", kNormalMapKey};
     case MaterialType::Emitter:
       return {"emission"};
     case MaterialType::Mirror:
-      return {"reflectance"};
+      return {"reflectance", kNormalMapKey};
     case MaterialType::Pbr: {
-      std::vector<std::string> keys{kPbrDoubleSidedKey};
+      std::vector<std::string> keys{kPbrDoubleSidedKey, kNormalMapKey};
       for (const PbrNumber& n : kPbrNumbers) keys.emplace_back(n.key);
       for (const PbrColour& c : kPbrColours) keys.emplace_back(c.key);
       return keys;
@@ -497,28 +501,163 @@ void reject_foreign_parameters(const TableReader& material, MaterialType type) {
   }
 }
 
+// Textured values (docs/textures.md): `KEY = { texture = "wood.png", scale = ..., wrap = ...,
+// filter = ..., uv_scale = ..., color_space = ..., channel = ... }` instead of a colour or number.
+// `images` is the scene's image list; nullptr where the object has no texture coordinates (a
+// sphere), which makes any texture an error.
+bool is_texture_value(const TableReader& material, std::string_view key) {
+  const toml::node* node = material.get(key);
+  return node && node->is_table();
+}
+
+// The texture table under `key`. Colours (`colour`) take `scale` as a number or [r, g, b] into
+// *colour_factor, scalars as a number into *number_factor, and `channel`; a normal map (`normal`)
+// takes `scale` as glTF's normalTexture.scale. The image is loaded into `images`.
+TextureRef read_texture_value(const TableReader& material, std::string_view key, std::vector<TextureImage>* images,
+                              bool colour, bool normal, Vec3* colour_factor, double* number_factor,
+                              double* normal_scale) {
+  const toml::node* node = material.get(key);
+  const SourcePosition at = material.position_of(*node);
+  if (!images)
+    fail(at, material.key_path(key),
+         "a texture needs texture coordinates, and a sphere has none (textures apply to meshes)");
+  const auto table = material.table(key);
+  std::vector<std::string> keys{"texture", "scale", "wrap", "filter", "uv_scale", "color_space"};
+  if (!colour && !normal) keys.emplace_back("channel");
+  table->reject_unknown_keys(keys);
+  const auto file = table->string("texture");
+  if (!file) table->fail_missing("texture");
+  TextureRef ref;
+  ref.where = at.str() + ": " + material.key_path(key);
+  if (const toml::node* scale = table->get("scale")) {
+    if (colour && scale->is_array()) {
+      *colour_factor = *table->vec3("scale");
+    } else {
+      const auto value = table->number("scale");
+      if (!value) table->fail_type("scale", *scale, colour ? "a number or an array of 3 numbers" : "a number");
+      if (colour) *colour_factor = {*value, *value, *value};
+      if (!colour && !normal) *number_factor = *value;
+      if (normal) *normal_scale = *value;
+    }
+    if (normal && !(std::isfinite(*normal_scale) && std::fabs(*normal_scale) <= 100))
+      fail(table->position_of(*scale), table->key_path("scale"), "must be a number in [-100, 100]");
+  }
+  const auto word = [&](const char* name, std::initializer_list<const char*> words) -> int {
+    const auto value = table->string(name);
+    if (!value) return 0;
+    std::vector<std::string> names(words.begin(), words.end());
+    for (size_t i = 0; i < names.size(); ++i)
+      if (*value == names[i]) return int(i);
+    fail(table->position_of(*table->get(name)), table->key_path(name),
+         unknown_word_message(name, *value, names, "expected " + quoted_list(names)));
+  };
+  ref.wrap_u = ref.wrap_v = static_cast<TextureWrap>(word("wrap", {"repeat", "clamp", "mirror"}));
+  ref.filter = static_cast<TextureFilter>(word("filter", {"bilinear", "nearest"}));
+  std::optional<ColorSpace> space;
+  if (table->get("color_space")) space = static_cast<ColorSpace>(word("color_space", {"srgb", "linear"}));
+  if (!colour && !space) space = ColorSpace::Linear;  // data, not colour: scalars and normal maps
+  if (const toml::node* uv = table->get("uv_scale")) {
+    double su = 1, sv = 1;
+    if (uv->is_number()) {
+      su = sv = *table->number("uv_scale");
+    } else {
+      const toml::array* a = uv->as_array();
+      if (!a || a->size() != 2 || !a->get(0)->is_number() || !a->get(1)->is_number())
+        table->fail_type("uv_scale", *uv, "a number or an array of 2 numbers");
+      su = a->get(0)->value<double>().value_or(1);
+      sv = a->get(1)->value<double>().value_or(1);
+    }
+    if (!(std::isfinite(su) && std::isfinite(sv) && su != 0 && sv != 0 && std::fabs(su) <= 1e6 && std::fabs(sv) <= 1e6))
+      fail(table->position_of(*uv), table->key_path("uv_scale"), "must be non-zero and at most 1e6 in size");
+    ref.uv_transform = {su, 0, 0, 0, sv, 0};  // about (0, 0), the image's bottom-left
+  }
+  if (const auto channel = table->integer("channel")) {
+    if (*channel < 0 || *channel > 3)
+      fail(table->position_of(*table->get("channel")), table->key_path("channel"), "must be 0, 1, 2 or 3 (R, G, B, A)");
+    ref.channel = int(*channel);
+  }
+  const std::string file_key = table->position_of(*table->get("texture")).str() + ": " + table->key_path("texture");
+  ref.image = load_texture_image(*images, resolve_mesh_path(material.where().file, *file), *file, space, file_key);
+  return ref;
+}
+
+// A colour parameter: [r, g, b], or a texture table (its factor `scale`, default 1).
+std::optional<Vec3> textured_vec3(const TableReader& material, std::string_view key, TextureRef& ref,
+                                  std::vector<TextureImage>* images) {
+  if (!is_texture_value(material, key)) return material.vec3(key);
+  Vec3 factor{1, 1, 1};
+  ref = read_texture_value(material, key, images, true, false, &factor, nullptr, nullptr);
+  return factor;
+}
+
+std::optional<double> textured_number(const TableReader& material, std::string_view key, TextureRef& ref,
+                                      std::vector<TextureImage>* images) {
+  if (!is_texture_value(material, key)) return material.number(key);
+  double factor = 1;
+  ref = read_texture_value(material, key, images, false, false, nullptr, &factor, nullptr);
+  return factor;
+}
+
+// The pbr keys that may be textures, and their slots.
+TextureRef* pbr_texture_slot(Material& m, const char* key) {
+  const std::string k = key;
+  if (k == "base_color") return &m.textures.base_color;
+  if (k == "emission") return &m.textures.emission;
+  if (k == "metallic") return &m.textures.metallic;
+  if (k == "roughness") return &m.textures.roughness;
+  return nullptr;
+}
+
 // A `type = "pbr"` material: the keys of pbr_params.h, each at glTF's default when absent.
-void read_pbr_material(const TableReader& material, Material& m) {
-  for (const PbrNumber& n : kPbrNumbers) m.*n.field = material.number(n.key).value_or(n.fallback);
-  for (const PbrColour& c : kPbrColours) m.*c.field = material.vec3(c.key).value_or(c.fallback);
+void read_pbr_material(const TableReader& material, Material& m, std::vector<TextureImage>* images) {
+  const auto untextured = [&](const char* key) {
+    if (is_texture_value(material, key))
+      fail(material.position_of(*material.get(key)), material.key_path(key),
+           "cannot be a texture (base_color, metallic, roughness and emission can)");
+  };
+  for (const PbrNumber& n : kPbrNumbers) {
+    TextureRef* slot = pbr_texture_slot(m, n.key);
+    if (!slot) untextured(n.key);
+    TextureRef unused;
+    m.*n.field = textured_number(material, n.key, slot ? *slot : unused, images).value_or(n.fallback);
+  }
+  for (const PbrColour& c : kPbrColours) {
+    TextureRef* slot = pbr_texture_slot(m, c.key);
+    if (!slot) untextured(c.key);
+    TextureRef unused;
+    m.*c.field = textured_vec3(material, c.key, slot ? *slot : unused, images).value_or(c.fallback);
+  }
   m.double_sided = material.boolean(kPbrDoubleSidedKey).value_or(true);
 }
 
-Material read_material(const TableReader& material) {
+void read_normal_map(const TableReader& material, Material& m, std::vector<TextureImage>* images) {
+  const toml::node* node = material.get(kNormalMapKey);
+  if (!node) return;
+  if (!node->is_table()) material.fail_type(kNormalMapKey, *node, "a texture table ({ texture = \"FILE\", ... })");
+  m.textures.normal = read_texture_value(material, kNormalMapKey, images, false, true, nullptr, nullptr, &m.textures.normal_scale);
+}
+
+// `images`: the scene's image list, or nullptr for a sphere's material (no texture coordinates).
+Material read_material(const TableReader& material, std::vector<TextureImage>* images) {
   // Unknown keys first, against every material key, so a misspelling gets its suggestion.
   material.reject_unknown_keys(all_material_keys());
   Material m;
   m.type = parse_material_type(material);
   reject_foreign_parameters(material, m.type);
+  if (m.type != MaterialType::Emitter) read_normal_map(material, m, images);
   if (m.type == MaterialType::Pbr) {
-    read_pbr_material(material, m);
+    read_pbr_material(material, m, images);
     return m;
   }
   if (m.type == MaterialType::Emitter) {
-    m.emission = material.required_vec3("emission");
+    const auto emission = textured_vec3(material, "emission", m.textures.emission, images);
+    if (!emission) material.fail_missing("emission");
+    m.emission = *emission;
     return m;
   }
-  m.reflectance = material.required_vec3("reflectance");
+  const auto reflectance = textured_vec3(material, "reflectance", m.textures.base_color, images);
+  if (!reflectance) material.fail_missing("reflectance");
+  m.reflectance = *reflectance;
   if (m.type == MaterialType::Phong) m.phong_exponent = material.required_number("exponent");
   if (m.type == MaterialType::Glass) m.ior = material.required_number("ior");
   return m;
@@ -547,7 +686,7 @@ Sphere read_sphere(const TableReader& sphere, size_t index) {
   s.radius = sphere.required_number("radius");
   const auto material = sphere.table("material");
   if (!material) sphere.fail_missing("material");
-  s.material = read_material(*material);
+  s.material = read_material(*material, nullptr);
   s.where = sphere.where();
   return s;
 }
@@ -585,9 +724,9 @@ LocalMesh read_mesh_file_table(const TableReader& mesh, const std::string& file,
 // One [[mesh]] table: a mesh file or inline vertices, placed, degenerate triangles dropped (and
 // counted in a warning).
 TriangleMesh read_mesh(const TableReader& mesh, size_t index, const SourceMap& sources,
-                       std::vector<std::string>& warnings) {
+                       std::vector<std::string>& warnings, std::vector<TextureImage>& images) {
   mesh.reject_unknown_keys(
-      {"name", "file", "scale", "rotate_deg", "translate", "material", "vertices", "normals", "triangles", "quads"});
+      {"name", "file", "scale", "rotate_deg", "translate", "material", "vertices", "normals", "uvs", "triangles", "quads"});
   TriangleMesh m;
   m.name = mesh.string("name").value_or("mesh[" + std::to_string(index) + "]");
   m.where = mesh.where();
@@ -596,13 +735,13 @@ TriangleMesh read_mesh(const TableReader& mesh, size_t index, const SourceMap& s
   if (const auto t = mesh.vec3("translate")) m.placement.translate = *t;
   const auto material = mesh.table("material");
   if (!material) mesh.fail_missing("material");
-  m.material = read_material(*material);
+  m.material = read_material(*material, &images);
   scene_detail::check_mesh_placement(m.placement, mesh.path(), sources);
 
   const auto file = mesh.string("file");
   LocalMesh local;
   if (file) {
-    for (const char* inline_key : {"vertices", "normals", "triangles", "quads"})
+    for (const char* inline_key : {"vertices", "normals", "uvs", "triangles", "quads"})
       if (const toml::node* node = mesh.get(inline_key))
         fail(mesh.position_of(*node), mesh.key_path(inline_key),
              "'" + std::string(inline_key) + "' does not go with 'file' (a mesh is a file or written inline)");
@@ -613,6 +752,7 @@ TriangleMesh read_mesh(const TableReader& mesh, size_t index, const SourceMap& s
     scene_detail::InlineMeshRows rows;
     rows.vertices = mesh.rows<double, 3>("vertices");
     rows.normals = mesh.rows<double, 3>("normals");
+    rows.uvs = mesh.rows<double, 2>("uvs");
     rows.triangles = mesh.rows<int64_t, 3>("triangles");
     rows.quads = mesh.rows<int64_t, 4>("quads");
     local = scene_detail::inline_local_mesh(rows, mesh.path(), sources);
@@ -776,11 +916,15 @@ auto read_table_array(const TableReader& top, const std::string& key, Read read)
 // each [[gltf]] file's (its name and the hash over it and its buffers), so that a [[gltf]]
 // placing only lights counts too.
 std::string scene_hash(const std::string& text, const std::vector<TriangleMesh>& meshes,
-                       const std::vector<std::pair<std::string, std::string>>& gltf_files) {
+                       const std::vector<std::pair<std::string, std::string>>& gltf_files,
+                       const std::vector<TextureImage>& images) {
   uint64_t hash = fnv1a64(text);
   for (const TriangleMesh& m : meshes)
     if (!m.file.empty()) hash = fnv1a64(m.file + '\0' + m.file_hash + '\n', hash);
   for (const auto& [file, file_hash] : gltf_files) hash = fnv1a64(file + '\0' + file_hash + '\n', hash);
+  // Texture files (a TOML scene's; a glTF file's images are in its own hash when embedded, and
+  // chained here too when separate).
+  for (const TextureImage& image : images) hash = fnv1a64(image.file + '\0' + image.hash + '\n', hash);
   return hex64(hash);
 }
 
@@ -800,14 +944,18 @@ Scene build_scene(const toml::table& root, const std::string& file,
   read_camera(*camera, scene.camera);
   scene.spheres = read_table_array(top, "sphere", read_sphere);
   scene.meshes = read_table_array(top, "mesh", [&](const TableReader& mesh, size_t i) {
-    return read_mesh(mesh, i, sources, scene.warnings);
+    return read_mesh(mesh, i, sources, scene.warnings, scene.images);
   });
   scene.lights = read_table_array(top, "light", read_light);
   const auto gltfs = read_table_array(top, "gltf", [&](const TableReader& gltf, size_t) {
     return read_gltf(gltf, sources, scene.warnings, gltf_files);
   });
   for (const GltfContents& contents : gltfs) {
+    const size_t first_mesh = scene.meshes.size();
     scene.meshes.insert(scene.meshes.end(), contents.meshes.begin(), contents.meshes.end());
+    // The glTF file's images join the scene's; its materials' indices move with them.
+    for (size_t i = first_mesh; i < scene.meshes.size(); ++i) offset_texture_images(scene.meshes[i].material, int(scene.images.size()));
+    scene.images.insert(scene.images.end(), contents.images.begin(), contents.images.end());
     scene.lights.insert(scene.lights.end(), contents.lights.begin(), contents.lights.end());
   }
   // Punctual lights are reached only by next-event estimation: it is the default of a scene that
@@ -819,6 +967,7 @@ Scene build_scene(const toml::table& root, const std::string& file,
   }
   if (const auto environment = top.table("environment")) scene.environment = read_environment(*environment, sources);
   scene_detail::validate_scene(scene, sources);
+  check_textured_meshes(scene);
   return scene;
 }
 
@@ -895,7 +1044,7 @@ Scene load_scene_string(const std::string& text, const std::string& name) {
   std::vector<std::pair<std::string, std::string>> gltf_files;
   Scene scene = build_scene(root, name, gltf_files);
   scene.file = name;
-  scene.file_hash = scene_hash(text, scene.meshes, gltf_files);
+  scene.file_hash = scene_hash(text, scene.meshes, gltf_files, scene.images);
   chain_environment_hash(scene);
   return scene;
 }

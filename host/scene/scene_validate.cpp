@@ -242,6 +242,15 @@ LocalMesh inline_local_mesh(const InlineMeshRows& rows, const std::string& key, 
     if (n[0] == 0 && n[1] == 0 && n[2] == 0) fail_at(sources, row_key("normals", i), "a normal must not be zero");
     mesh.normals.push_back(n);
   }
+  if (!rows.uvs.empty() && rows.uvs.size() != rows.vertices.size())
+    fail_at(sources, key + ".uvs",
+            "uvs must have one entry per vertex (got " + std::to_string(rows.uvs.size()) + " for " +
+                std::to_string(rows.vertices.size()) + " vertices)");
+  for (size_t i = 0; i < rows.uvs.size(); ++i) {
+    if (!std::isfinite(rows.uvs[i][0]) || !std::isfinite(rows.uvs[i][1]))
+      fail_at(sources, row_key("uvs", i), "texture coordinates must be finite");
+    mesh.uvs.push_back(rows.uvs[i]);
+  }
   if (rows.triangles.empty() && rows.quads.empty())
     fail_at(sources, key, "the mesh has neither triangles nor quads");
   for (size_t i = 0; i < rows.triangles.size(); ++i) {

@@ -57,6 +57,7 @@ void check_integer_setting(const std::string& key, int64_t value, const SourcePo
 struct InlineMeshRows {
   std::vector<Vec3> vertices;
   std::vector<Vec3> normals;
+  std::vector<std::array<double, 2>> uvs;  // texture coordinates, OBJ's convention ((0, 0) bottom-left)
   std::vector<std::array<int64_t, 3>> triangles;
   std::vector<std::array<int64_t, 4>> quads;
 };

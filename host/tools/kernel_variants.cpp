@@ -13,13 +13,14 @@ namespace {
 // Dimension positions in KernelVariant::choice.
 enum Dim {
   kForm, kPrecision, kEstimator, kRussianRoulette, kSpecialisation, kSceneLoops, kPhong, kGlass, kGeometry,
-  kPbr, kLights, kCamera, kEnvironment, kAovs, kDimCount
+  kPbr, kLights, kCamera, kEnvironment, kAovs, kTextures, kDimCount
 };
 
 // Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
 // refuses them, kernel_options.h), so it goes only with "no-punctual".
+// Textures go with meshes: a textured variant's tile is a mesh beside the octahedron.
 bool renderable(const std::vector<int>& choice) {
-  return !(choice[kEstimator] == 0 && choice[kLights] != 0);
+  return !(choice[kEstimator] == 0 && choice[kLights] != 0) && !(choice[kTextures] != 0 && choice[kGeometry] == 0);
 }
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
@@ -34,7 +35,8 @@ std::set<Pair> all_pairs() {
       for (int va = 0; va < int(dims[a].values.size()); ++va)
         for (int vb = 0; vb < int(dims[b].values.size()); ++vb) {
           const bool book_and_punctual = (a == kEstimator && va == 0 && b == kLights && vb != 0);
-          if (!book_and_punctual) pairs.insert({a, va, b, vb});
+          const bool spheres_and_textures = (a == kGeometry && va == 0 && b == kTextures && vb != 0);
+          if (!book_and_punctual && !spheres_and_textures) pairs.insert({a, va, b, vb});
         }
   return pairs;
 }
@@ -164,6 +166,61 @@ PunctualLight punctual_light(int value) {
   return l;
 }
 
+// A texture image of w x h texels, `channels` channels, made up of a smooth pattern in [0, 1].
+TextureImage pattern_image(const std::string& name, int w, int h, int channels, TexelStorage storage, ColorSpace space) {
+  TextureImage image;
+  image.file = name;
+  image.hash = name;
+  image.width = w;
+  image.height = h;
+  image.channels = channels;
+  image.storage = storage;
+  image.color_space = space;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < channels; ++c)
+        image.pixels.push_back(float(0.25 + 0.5 * ((x * 3 + y * 5 + c * 7) % 11) / 10.0));
+  return image;
+}
+
+// A textured tile on the floor in front of the balls (docs/textures.md): an 8-bit RGBA sRGB base
+// colour (repeat, bilinear) and a half normal map (clamp in u) on every textured variant; with
+// `pbr` (the variant's pbr dimension) the tile is a Pbr material and adds a half two-channel
+// metallic-roughness map and a float one-channel emission map (mirror, nearest): every storage,
+// four channel counts, every wrap mode, both filters, normal maps and emission textures.
+void add_textured_tile(Scene& scene, bool pbr) {
+  TriangleMesh m;
+  m.name = "variant_tile";
+  m.positions = {{-1.2, 0.02, 2.2}, {1.2, 0.02, 2.2}, {1.2, 0.02, 3.4}, {-1.2, 0.02, 3.4}};
+  m.uvs = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}};
+  const int first = int(scene.images.size());
+  scene.images.push_back(pattern_image("variant_rgba8", 8, 4, 4, TexelStorage::U8, ColorSpace::Srgb));
+  scene.images.push_back(pattern_image("variant_normal_half", 4, 4, 3, TexelStorage::Half, ColorSpace::Linear));
+  MaterialTextures& t = m.material.textures;
+  t.base_color.image = first;
+  t.normal.image = first + 1;
+  t.normal.wrap_u = TextureWrap::Clamp;
+  t.normal_scale = 0.5;
+  m.material.type = MaterialType::Lambertian;
+  m.material.reflectance = {0.8, 0.8, 0.8};
+  if (pbr) {
+    scene.images.push_back(pattern_image("variant_mr_half", 4, 4, 2, TexelStorage::Half, ColorSpace::Linear));
+    scene.images.push_back(pattern_image("variant_emission_float", 4, 2, 1, TexelStorage::Float, ColorSpace::Linear));
+    m.material.type = MaterialType::Pbr;
+    m.material.metallic = 0.5;
+    m.material.roughness = 0.6;
+    m.material.emission = {0.1, 0.1, 0.1};
+    t.metallic.image = t.roughness.image = first + 2;
+    t.metallic.wrap_u = t.roughness.wrap_u = TextureWrap::Clamp;
+    t.metallic.channel = 1;
+    t.emission.image = first + 3;
+    t.emission.wrap_u = t.emission.wrap_v = TextureWrap::Mirror;
+    t.emission.filter = TextureFilter::Nearest;
+  }
+  scene.meshes.push_back(m);
+}
+
 }  // namespace
 
 const std::vector<VariantDimension>& kernel_variant_dimensions() {
@@ -182,8 +239,9 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"camera", {"perspective", "orthographic"}},
       {"environment", {"no-environment", "environment-image", "environment-constant"}},
       {"aovs", {"no-aovs", "aovs"}},
+      {"textures", {"no-textures", "textures"}},
   };
-  static_assert(kDimCount == 14, "one entry per Dim");
+  static_assert(kDimCount == 15, "one entry per Dim");
   return dims;
 }
 
@@ -212,6 +270,7 @@ int KernelVariant::punctual_light() const { return choice[kLights]; }
 bool KernelVariant::orthographic() const { return choice[kCamera] == 1; }
 int KernelVariant::environment() const { return choice[kEnvironment]; }
 bool KernelVariant::aovs() const { return choice[kAovs] == 1; }
+int KernelVariant::textures() const { return choice[kTextures]; }
 
 std::string KernelVariant::name() const {
   const auto& dims = kernel_variant_dimensions();
@@ -295,6 +354,7 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   }
   if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
   if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
+  if (variant.textures() != 0) add_textured_tile(scene, variant.has_pbr());
   if (variant.orthographic()) {
     scene.camera.projection = Projection::Orthographic;
     scene.camera.ortho_height = 6;

@@ -64,7 +64,7 @@ __kernel void probe_scene_hit(__global const GpuSphere* spheres, __global const 
   const size_t i = get_global_id(0);
   const Vec3 o = v3_from4(rays[2 * i]);
   const Vec3 d = v3_from4(rays[2 * i + 1]);
-  const SceneBuffers scene = scene_buffers(spheres, 0, nodes, triangles, 0, 0);
+  const SceneBuffers scene = scene_buffers(spheres, 0, nodes, triangles, 0, 0, 0);
   Hit hit = no_hit();
   bool near_blocked = false, far_blocked = false;
   if (brute_force) {

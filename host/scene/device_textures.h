@@ -1,0 +1,50 @@
+// The scene's textures as the kernels read them (kernels/types.h, GpuTexturing; kernels/texture.cl):
+// one byte buffer holding the texture table, the textured materials, every triangle's texture
+// coordinates, tangents where a material has a normal map (the mesh's, else generated) and the
+// texels, packed 8-bit, half or float with 1 to 4 channels. Empty for a scene without textures.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace clpt {
+
+// What the kernels compile for the scene's textures (kernel_options.cpp reads it): bit
+// (1 << CLPT_TEXEL_*) of each storage used, (1 << (channels - 1)) of each channel count,
+// (1 << CLPT_WRAP_*) of each wrap mode, and whether a material has a normal map.
+struct TextureUse {
+  bool any = false;
+  uint32_t storages = 0;
+  uint32_t channel_counts = 0;
+  uint32_t wraps = 0;
+  bool normal_maps = false;
+  bool emission = false;  // an emission texture (light sampling then reads it too)
+};
+TextureUse texture_use(const Scene& scene);
+
+// The texturing buffer for the scene's triangles in the order `triangle_order` gives (entry i of
+// the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh);
+// empty when no material is textured. Throws Error(BadScene) naming the mesh and the material's
+// key when a textured material's mesh has no texture coordinates, or when the buffer would need
+// more than 2^32 bytes (the offsets are 32-bit).
+std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order);
+
+// Per-vertex tangents of a mesh with texture coordinates (MikkTSpace-style, docs/textures.md):
+// each triangle's tangent and bitangent from its uv gradients, summed per vertex weighted by the
+// corner's angle, made orthogonal to the vertex normal (the mesh's, else the area-weighted
+// geometric one); w = the bitangent's sign. A vertex with no usable uv gradient gets any unit
+// vector orthogonal to its normal.
+std::vector<std::array<double, 4>> generate_tangents(const TriangleMesh& mesh);
+
+// One line per image: "  file: W x H, C channel(s), STORAGE, COLOURSPACE, N bytes on the device".
+std::string explain_textures(const Scene& scene);
+
+// Throws Error(BadScene) when the scene's texels exceed `max_alloc_bytes` (the device's largest
+// allocation), naming the largest image and the device.
+void check_texture_memory(const Scene& scene, uint64_t max_alloc_bytes, const std::string& device);
+
+}  // namespace clpt

@@ -1,0 +1,14 @@
+/* probe_texture.cl: texture lookups (kernels/texture.cl) on inputs from the host, for
+ * tests/test_textures.cpp to compare with the host's lookups in double. Built without
+ * CLPT_ESTIMATOR, so every storage, channel count and wrap mode is compiled in. */
+#include "types.h"
+#include "maths.cl"
+#include "texture.cl"
+
+/* out[i] = the RGBA lookup of texture (uint)in[i].z at mesh coordinates (in[i].x, in[i].y). */
+__kernel void probe_texture(__global const uchar* texturing, __global const float4* in, __global float4* out) {
+  const size_t i = get_global_id(0);
+  const float4 q = in[i];
+  const TexelRgba c = texture_lookup(texturing, (uint)q.z, q.x, q.y);
+  out[i] = (float4)(c.r, c.g, c.b, c.a);
+}
