@@ -124,9 +124,10 @@ TEST(BvhStats, ReplicaCountsTheKernelsOrderOnATinyTree) {
     EXPECT_EQ(c.hits, 0u);
   }
   {
-    // Only the lower box: root, node 1, then nothing to pop.
+    // Only the lower box (leaving the root's y range at z = 0.5, beside the triangle there): root,
+    // node 1, then nothing to pop.
     TraversalCounts c;
-    replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 1, 1.2}), c);
+    EXPECT_FALSE(replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0.5, 1}), c).hit());
     EXPECT_EQ(c.nodes, 2u);
     EXPECT_EQ(c.boxes, 3u);
     EXPECT_EQ(c.triangles, 1u);
@@ -154,9 +155,9 @@ TEST(BvhStats, RaySampleIsDeterministicAndSeesTheCornellBox) {
   const TraversalStats s = measure_traversal(ds, a);
   EXPECT_EQ(s.camera.rays, a.camera_rays);
   EXPECT_EQ(s.bounce.rays, a.rays.size() - a.camera_rays);
-  // The box is closed but for its front: every camera ray that reaches the box hits it, and most
-  // bounce rays hit a wall.
-  EXPECT_GT(s.camera.hits, s.camera.rays * 9 / 10);
+  // The box fills most of the view (the rest is the dark outside), and is closed but for its front:
+  // most bounce rays hit a wall.
+  EXPECT_GT(s.camera.hits, s.camera.rays / 2);  // 529 of 768 at 64x48 (a wider image than the box)
   EXPECT_GT(s.bounce.hits, s.bounce.rays / 2);
   const TraversalCounts all = s.all();
   EXPECT_GE(all.per_ray(all.nodes), 1.0);

@@ -46,6 +46,9 @@ struct Bvh {
   std::vector<uint32_t> sphere_order;
   int depth = 0;           // nodes on the longest root-to-leaf path
   double build_seconds = 0;
+  // CPU seconds of this process during the build (all its threads): on a machine whose cores other
+  // work shares, the figure that holds; 0 where not measured (Embree's builder).
+  double build_cpu_seconds = 0;
   int build_threads = 1;   // threads the build could use (bvh_build_threads)
 };
 

@@ -88,6 +88,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.bvh_depth = ds.bvh.depth;
   row.bvh_build_s = ds.bvh.build_seconds;
   row.bvh_build_threads = ds.bvh.build_threads;
+  row.bvh_build_cpu_s = ds.bvh.build_cpu_seconds;
   StatsRaySample sample;
   if (!ds.bvh.nodes.empty()) {
     row.sah_cost = bvh_sah_cost(ds.bvh);
@@ -315,10 +316,10 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.bvh_nodes > 0) {
       std::snprintf(line, sizeof line,
-                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s on the host "
-                    "(%s builder, %d thread%s); %.1f device B/triangle\n",
+                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s (%.4f CPU-s) on "
+                    "the host (%s builder, %d thread%s); %.1f device B/triangle\n",
                     static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
-                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s,
+                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.bvh_build_cpu_s,
                     r.bvh_builder.c_str(), r.bvh_build_threads, r.bvh_build_threads == 1 ? "" : "s",
                     r.device_bytes_per_triangle);
       o << line;
@@ -369,7 +370,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
                           {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
-                          {"bvh_build_threads", r.bvh_build_threads}, {"sah_cost", r.sah_cost},
+                          {"bvh_build_threads", r.bvh_build_threads}, {"bvh_build_cpu_s", r.bvh_build_cpu_s}, {"sah_cost", r.sah_cost},
                           {"traversal", {{"rays", r.stats_rays}, {"camera_rays", r.stats_camera_rays},
                                          {"nodes_per_ray", r.nodes_per_ray}, {"boxes_per_ray", r.boxes_per_ray},
                                          {"triangles_per_ray", r.triangles_per_ray},

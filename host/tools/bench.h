@@ -85,6 +85,7 @@ struct BenchRow {
   double bvh_build_s = 0;
   double device_bytes_per_triangle = 0;
   int bvh_build_threads = 1;
+  double bvh_build_cpu_s = 0;  // CPU seconds of the build, all threads (Bvh::build_cpu_seconds)
   // The hierarchy's statistics (scene/bvh_stats.h): its SAH cost, and per closest-hit ray of the
   // replica's sample (stats_rays at the row's image size: camera rays, then one diffuse bounce
   // from each camera hit) the nodes visited, box tests, triangle tests and hierarchy sphere tests.
