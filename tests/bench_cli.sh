@@ -108,7 +108,7 @@ for r in rows:
     assert t["camera_rays"] == 256 and t["rays"] > t["camera_rays"], t
     assert t["nodes_per_ray"] >= 1 and t["boxes_per_ray"] > t["nodes_per_ray"], t
     assert 1 <= t["triangles_per_ray"] <= 32 and t["spheres_per_ray"] == 0, t
-    assert r["rays_per_s"] == r["segments_per_s"]["median"], r
+    assert r["rays_per_s"] == r["segments_per_s"]["median"] and r["rays_per_cpu_s"] > 0, r
     assert "anchor" not in r, r
 PY
 test "$(grep -c "hierarchy: 32 triangles" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$builders" | wc -l)"
@@ -136,6 +136,7 @@ a = mesh["anchor"]
 assert a["name"].startswith("embree ") and a["threads"] >= 1, a
 assert a["rays"] == mesh["traversal"]["rays"] and a["hits"] >= 200, a
 assert a["rtcIntersect1_rays_per_s"] > 0 and a["rtcIntersect16_rays_per_s"] > 0, a
+assert a["rtcIntersect1_rays_per_cpu_s"] > 0 and a["rtcIntersect16_rays_per_cpu_s"] > 0, a
 PY
   grep -q "anchor: clpt .* rtcIntersect1 .* rtcIntersect16" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
 else

@@ -232,6 +232,11 @@ nlohmann::json vector_width_json(const BenchRow& r) {
           {"blockers", blockers}};
 }
 
+// clpt's closest-hit rays per CPU-second: its paths per CPU-second times segments per path.
+double rays_per_cpu_s(const BenchRow& r) {
+  return r.paths_per_s.median > 0 ? r.paths_per_cpu_s.median * r.segments_per_s.median / r.paths_per_s.median : 0;
+}
+
 std::string format_rate(const Spread& s) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.2f [%.2f-%.2f]", s.median * 1e-6, s.min * 1e-6, s.max * 1e-6);
@@ -333,12 +338,16 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.anchor) {
       const AnchorRates& a = *r.anchor;
+      const double clpt_cpu = rays_per_cpu_s(r);
       std::snprintf(line, sizeof line,
-                    "    anchor: clpt %.2f M rays/s (segments/s); %s on %d thread%s, the same triangles and %llu rays: "
-                    "rtcIntersect1 %.2f M rays/s, rtcIntersect16 %.2f M rays/s; clpt/rtcIntersect1 %.3f\n",
-                    r.segments_per_s.median * 1e-6, a.name.c_str(), a.threads, a.threads == 1 ? "" : "s",
-                    static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.packet16_per_s * 1e-6,
-                    a.single_per_s > 0 ? r.segments_per_s.median / a.single_per_s : 0.0);
+                    "    anchor: clpt %.2f M rays/s (segments/s), %.2f M/CPU-s; %s on %d thread%s, the same triangles "
+                    "and %llu rays: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s, rtcIntersect16 %.2f M rays/s, %.2f "
+                    "M/CPU-s; clpt/rtcIntersect1 %.3f (per CPU-s %.3f)\n",
+                    r.segments_per_s.median * 1e-6, clpt_cpu * 1e-6, a.name.c_str(), a.threads, a.threads == 1 ? "" : "s",
+                    static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
+                    a.packet16_per_s * 1e-6, a.packet16_per_cpu_s * 1e-6,
+                    a.single_per_s > 0 ? r.segments_per_s.median / a.single_per_s : 0.0,
+                    a.single_per_cpu_s > 0 ? clpt_cpu / a.single_per_cpu_s : 0.0);
       o << line;
     }
     for (const RankRate& k : r.ranks) {
@@ -375,7 +384,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                                          {"nodes_per_ray", r.nodes_per_ray}, {"boxes_per_ray", r.boxes_per_ray},
                                          {"triangles_per_ray", r.triangles_per_ray},
                                          {"spheres_per_ray", r.spheres_per_ray}}},
-                          {"rays_per_s", r.segments_per_s.median},
+                          {"rays_per_s", r.segments_per_s.median}, {"rays_per_cpu_s", rays_per_cpu_s(r)},
                           {"paths_per_s", spread(r.paths_per_s)},
                           {"segments_per_s", spread(r.segments_per_s)}, {"paths_per_cpu_s", spread(r.paths_per_cpu_s)},
                           {"stage_seconds", stages}, {"vector_width", vector_width_json(r)}};
@@ -383,7 +392,9 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
       row["anchor"] = {{"name", r.anchor->name}, {"threads", r.anchor->threads}, {"rays", r.anchor->rays},
                        {"hits", r.anchor->hits}, {"build_s", r.anchor->build_s},
                        {"rtcIntersect1_rays_per_s", r.anchor->single_per_s},
-                       {"rtcIntersect16_rays_per_s", r.anchor->packet16_per_s}};
+                       {"rtcIntersect16_rays_per_s", r.anchor->packet16_per_s},
+                       {"rtcIntersect1_rays_per_cpu_s", r.anchor->single_per_cpu_s},
+                       {"rtcIntersect16_rays_per_cpu_s", r.anchor->packet16_per_cpu_s}};
     if (!r.ranks.empty()) {
       row["ranks"] = nlohmann::json::array();
       for (const RankRate& k : r.ranks)

@@ -114,12 +114,13 @@ uint64_t pass_packets(RTCScene scene, const std::vector<StatsRay>& rays, size_t 
 // Rays/s of `pass` over the sample on `threads` threads, whole passes until min_seconds.
 template <typename Pass>
 double rate(const Pass& pass, RTCScene scene, const std::vector<StatsRay>& rays, int threads, double min_seconds,
-            uint64_t& hits) {
+            uint64_t& hits, double& per_cpu_s) {
   const size_t n = rays.size();
   // Slices of whole packets, so that both queries split the sample alike.
   const size_t slice = ((n + size_t(threads) - 1) / size_t(threads) + 15) / 16 * 16;
   uint64_t passes = 0;
   const auto start = Clock::now();
+  const double cpu_start = process_cpu_seconds();
   double elapsed = 0;
   do {
     std::vector<std::thread> workers;
@@ -134,6 +135,7 @@ double rate(const Pass& pass, RTCScene scene, const std::vector<StatsRay>& rays,
     ++passes;
     elapsed = seconds_since(start);
   } while (elapsed < min_seconds);
+  per_cpu_s = double(passes) * double(n) / std::max(process_cpu_seconds() - cpu_start, 1e-9);
   return double(passes) * double(n) / elapsed;
 }
 
@@ -175,8 +177,9 @@ AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const 
   out.build_s = seconds_since(start);
   if (rtcGetDeviceError(e.device) != RTC_ERROR_NONE)
     throw Error(ExitCode::Failure, "--traversal-anchor embree: Embree failed to build the scene");
-  out.single_per_s = rate(pass_single, e.scene, sample.rays, out.threads, min_seconds, out.hits);
-  out.packet16_per_s = rate(pass_packets, e.scene, sample.rays, out.threads, min_seconds, out.packet_hits);
+  out.single_per_s = rate(pass_single, e.scene, sample.rays, out.threads, min_seconds, out.hits, out.single_per_cpu_s);
+  out.packet16_per_s =
+      rate(pass_packets, e.scene, sample.rays, out.threads, min_seconds, out.packet_hits, out.packet16_per_cpu_s);
   return out;
 }
 #else

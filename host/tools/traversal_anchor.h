@@ -34,6 +34,9 @@ struct AnchorRates {
   double build_s = 0;          // rtcCommitScene, for information
   double single_per_s = 0;     // rays/s, rtcIntersect1
   double packet16_per_s = 0;   // rays/s, rtcIntersect16
+  // Rays per CPU-second of this process (all its threads) over the same passes: the figures that
+  // hold while other work shares the cores, beside clpt's rays per CPU-second.
+  double single_per_cpu_s = 0, packet16_per_cpu_s = 0;
 };
 AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const StatsRaySample& sample, int threads,
                                double min_seconds);
