@@ -35,11 +35,11 @@ FormChoice default_form_for(const DeviceInfo& device, const KernelFeatures& scen
   const std::string scene = std::string("a scene of ") + scene_geometry_name(g);
   if (!device.is_cpu) {
     c.form = ExecutionForm::Megakernel;
-    c.reason = "the default on a non-CPU device, " + scene + " (no GPU measured: docs/performance.md, \"Forms\")";
+    c.reason = "the default on a non-CPU device for " + scene + "; no GPU measured: docs/performance.md \"Forms\"";
     return c;
   }
   c.form = wavefront_on_cpu(g) ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
-  c.reason = std::string("the default on a CPU for ") + scene + " (docs/performance.md, \"Forms\")";
+  c.reason = std::string("the default on a CPU for ") + scene + "; docs/performance.md \"Forms\"";
   return c;
 }
 
