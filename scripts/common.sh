@@ -44,10 +44,12 @@ clpt_install_missing() {
   DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# clpt_generate_meshes: writes the generated mesh of scenes/torus-knot.toml if it is missing
-# (scripts/make_mesh_scene.py; python3 is in CLPT_PACKAGES for it: a minimal Debian 12 has none).
+# clpt_generate_meshes: writes the generated meshes of scenes/torus-knot.toml and
+# scenes/dense-surface.toml if they are missing (scripts/make_mesh_scene.py,
+# scripts/make_dense_mesh_scene.py; python3 is in CLPT_PACKAGES for them: a minimal Debian 12 has none).
 clpt_generate_meshes() {
   [[ -f "$CLPT_ROOT/scenes/meshes/torus_knot.ply" ]] || python3 "$CLPT_ROOT/scripts/make_mesh_scene.py" >&2
+  [[ -f "$CLPT_ROOT/scenes/meshes/dense_surface.ply" ]] || python3 "$CLPT_ROOT/scripts/make_dense_mesh_scene.py" >&2
 }
 
 # clpt_build [CMAKE_ARGS...]: configure (Release) and build everything in $CLPT_BUILD.

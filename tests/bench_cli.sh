@@ -6,7 +6,9 @@
 # option); the Cornell box's rows report their hierarchy and builder, one row per builder (clpt's,
 # and Embree's two in a build with Embree), each with its own key. Each row reports its vector
 # width (vector_width): on PoCL's CPU device a positive number of work-items, elsewhere null and
-# why; --no-vector-width: null, "not measured".
+# why; --no-vector-width: null, "not measured". Mesh rows report the hierarchy's statistics (SAH
+# cost, nodes, boxes and triangles per ray, build threads) and, with --traversal-anchor embree in
+# a build with Embree, Embree's rays/s on the same triangles and rays (else exit 2, and skipped).
 #   bench_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -euo pipefail
 clpt=$1 src=$2 work=$3
@@ -80,10 +82,10 @@ status=0
 "$clpt" bench --bvh-builders nosuch --devices cpu > /dev/null 2> "$work/builder.err" || status=$?
 test "$status" -eq 2 || { echo "FAIL: --bvh-builders nosuch exited $status, not 2"; exit 1; }
 grep -q -- "--bvh-builders: unknown hierarchy builder 'nosuch'" "$work/builder.err" || { cat "$work/builder.err"; exit 1; }
-builders=clpt
+builders=clpt,clpt-1thread
 if "$clpt" bench --no-vector-width --bvh-builders embree --scenes scenes/diffuse.toml --width 4 --height 4 --spp 1 --warmup 0 \
        --repeat 1 --devices cpu --forms megakernel > /dev/null 2> "$work/embree.err"; then
-  builders=clpt,embree,embree-1thread
+  builders=clpt,clpt-1thread,embree,embree-1thread
 else
   grep -q "built without Embree" "$work/embree.err" || { cat "$work/embree.err"; exit 1; }
 fi
@@ -98,6 +100,47 @@ assert len({r["key"] for r in rows}) == len(rows), rows
 for r in rows:
     assert r["triangles"] == 32 and r["bvh_nodes"] > 0 and r["bvh_depth"] > 0, r
     assert r["device_bytes_per_triangle"] > 0 and r["bvh_build_s"] >= 0, r
+    # The hierarchy's statistics: SAH cost, and per ray of the replica's sample (16 x 16 camera rays
+    # at 16x16, one per pixel, plus a bounce from each hit) nodes, boxes and triangles; the Cornell box is closed
+    # but for its front, so every ray tests a triangle, never more than all 32.
+    t = r["traversal"]
+    assert r["sah_cost"] > 1 and r["bvh_build_threads"] >= 1, r
+    assert t["camera_rays"] == 256 and t["rays"] > t["camera_rays"], t
+    assert t["nodes_per_ray"] >= 1 and t["boxes_per_ray"] > t["nodes_per_ray"], t
+    assert 1 <= t["triangles_per_ray"] <= 32 and t["spheres_per_ray"] == 0, t
+    assert r["rays_per_s"] == r["segments_per_s"]["median"] and r["rays_per_cpu_s"] > 0, r
+    assert "anchor" not in r, r
 PY
 test "$(grep -c "hierarchy: 32 triangles" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$builders" | wc -l)"
-echo "bench CLI: table, JSON fields, vector widths, baseline pass and regression, hierarchy builders all as expected"
+test "$(grep -c "traversal: SAH cost" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$builders" | wc -l)"
+
+# --traversal-anchor: an unknown anchor is refused; embree, in a build with Embree, times
+# rtcIntersect1 and rtcIntersect16 on the mesh rows' triangles and rays (hits as the replica's
+# sample: the Cornell box's camera rays all hit), and a build without it says so (exit 2).
+status=0
+"$clpt" bench --traversal-anchor nosuch --devices cpu > /dev/null 2> "$work/anchor.err" || status=$?
+test "$status" -eq 2 || { echo "FAIL: --traversal-anchor nosuch exited $status, not 2"; exit 1; }
+grep -q -- "--traversal-anchor: unknown anchor 'nosuch'" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
+status=0
+"$clpt" bench --no-vector-width --traversal-anchor embree --scenes scenes/cornell-box.toml,scenes/diffuse.toml --width 16 \
+    --height 16 --spp 1 --warmup 0 --repeat 1 --devices cpu --forms megakernel --json "$work/anchor.json" \
+    > "$work/anchor.txt" 2> "$work/anchor.err" || status=$?
+if [[ $status -eq 0 ]]; then
+  python3 - "$work/anchor.json" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))["rows"]
+assert len(rows) == 2, rows
+mesh, spheres = rows
+assert "anchor" not in spheres, spheres  # no triangles: no anchor
+a = mesh["anchor"]
+assert a["name"].startswith("embree ") and a["threads"] >= 1, a
+assert a["rays"] == mesh["traversal"]["rays"] and a["hits"] >= 200, a
+assert a["rtcIntersect1_rays_per_s"] > 0 and a["rtcIntersect16_rays_per_s"] > 0, a
+assert a["rtcIntersect1_rays_per_cpu_s"] > 0 and a["rtcIntersect16_rays_per_cpu_s"] > 0, a
+PY
+  grep -q "anchor: clpt .* rtcIntersect1 .* rtcIntersect16" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
+else
+  test "$status" -eq 2 && grep -q "built without Embree" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
+  echo "bench CLI: no Embree in this build: the anchor's timing is not checked"
+fi
+echo "bench CLI: table, JSON fields, vector widths, baseline pass and regression, hierarchy builders, statistics and anchor all as expected"

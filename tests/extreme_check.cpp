@@ -74,7 +74,7 @@ ExtremeResult same_image(const Extreme& e, const ExtremeRun& run, const Rendered
   ExtremeResult out;
   out.pass = true;
   const double f = e.image_factor;
-  for (const Region& g : book_regions()) {
+  for (const Region& g : e.regions.empty() ? book_regions() : e.regions) {
     if (std::find(e.skip_regions.begin(), e.skip_regions.end(), g.name) != e.skip_regions.end()) continue;
     const RegionStats a = region_stats(r.mean, r.variance, e.width, g.x0, g.y0, g.x1, g.y1);
     const RegionStats b = region_stats(ref.mean, ref.variance, e.width, g.x0, g.y0, g.x1, g.y1);
@@ -194,7 +194,7 @@ ExtremeResult horizon(const Extreme& e, const Rendered& r) {
 int comparisons_of(const Extreme& extreme) {
   switch (extreme.check) {
     case ExtremeCheck::SameImage:
-      return int(book_regions().size()) * 3;
+      return int(extreme.regions.empty() ? book_regions().size() : extreme.regions.size()) * 3;
     case ExtremeCheck::SmallSphere:
       return 1;
     default:

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "render_test_util.h"
 #include "scene/scene_transform.h"
@@ -199,6 +200,29 @@ Extreme long_accumulation(double emission, int64_t spp) {
   return e;
 }
 
+bool mesh_scene_available(const std::string& name) {
+  if (name != "torus-knot") return true;  // the Cornell box is inline
+  return bool(std::ifstream(std::string(CLPT_SOURCE_DIR) + "/scenes/meshes/torus_knot.ply"));
+}
+
+Extreme transformed_mesh_scene(const std::string& name, double factor, double offset) {
+  Extreme e;
+  e.name = name == "cornell-box" ? "Cornell box" : name == "torus-knot" ? "torus knot" : name;
+  e.reference_name = e.name;
+  e.reference = load_book_scene(name);
+  if (factor != 1) e.name += ", scale " + format_power(factor);
+  if (offset != 0) e.name += ", translate " + format_power(offset);
+  e.scene = translate_scene(scale_scene(e.reference, factor), {offset, offset, offset});
+  e.width = 80;
+  e.height = 60;
+  e.spp = 64;
+  for (int by = 0; by < 4; ++by)
+    for (int bx = 0; bx < 4; ++bx)
+      e.regions.push_back({"block " + std::to_string(bx) + "," + std::to_string(by), bx * e.width / 4,
+                           by * e.height / 4, (bx + 1) * e.width / 4, (by + 1) * e.height / 4});
+  return e;
+}
+
 std::vector<Extreme> all_extremes() {
   std::vector<Extreme> all;
   for (double s : {1e-4, 1e-2, 1e2, 1e4, 1e6}) all.push_back(scaled_book(s));
@@ -214,6 +238,15 @@ std::vector<Extreme> all_extremes() {
   all.push_back(long_accumulation(0.75, 10'000'000));
   // 0.7 is not dyadic: a sequential float sum of a pass came out 4.0e-5 low; film.cl sums in blocks of 16.
   all.push_back(long_accumulation(0.7, 10'000'000));
+  // Meshes (issue 35): the Cornell box in millimetres, moved and scaled, and the torus knot.
+  all.push_back(transformed_mesh_scene("cornell-box", 1, 1e6));
+  all.push_back(transformed_mesh_scene("cornell-box", 1e-4, 0));
+  all.push_back(transformed_mesh_scene("cornell-box", 1e4, 0));
+  all.push_back(transformed_mesh_scene("cornell-box", 1e-4, 1e6));
+  if (mesh_scene_available("torus-knot")) {
+    all.push_back(transformed_mesh_scene("torus-knot", 1, 1e6));
+    all.push_back(transformed_mesh_scene("torus-knot", 1e-4, 1e6));
+  }
   return all;
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "render_test_util.h"  // Region
 #include "scene/scene.h"
 
 namespace clpt::test {
@@ -34,6 +35,8 @@ struct Extreme {
   std::string reference_name;
   Scene reference;
   std::vector<std::string> skip_regions;
+  // SameImage: the rectangles compared; empty: tests/reference/book_regions.txt (the book scene's).
+  std::vector<Region> regions;
   double expected = 0;      // Uniform: the exact pixel value; SmallSphere/Horizon: Le
   double albedo = 0;        // SmallSphere/Horizon: the Lambertian albedo a
   double disc_radius_px = 0;  // SmallSphere: analytic radius of the ball's image, pixels
@@ -59,7 +62,15 @@ Extreme grazing_camera(double height_over_view);
 Extreme albedo_one_furnace(double factor, double offset);
 Extreme long_accumulation(double emission, int64_t spp);
 
-// Every row of the matrix, in table order.
+// A mesh scene (scenes/NAME.toml: "cornell-box", "torus-knot") scaled by `factor` about the world
+// origin, then translated by `offset` in x, y and z, against the unit scene: SameImage over a 4 x 4
+// grid of blocks (a mesh scene has no named regions), with next-event estimation as its file says,
+// 80x60 at 64 spp. The torus knot's mesh is generated (scripts/make_mesh_scene.py);
+// mesh_scene_available says whether it is there.
+Extreme transformed_mesh_scene(const std::string& name, double factor, double offset);
+bool mesh_scene_available(const std::string& name);
+
+// Every row of the matrix, in table order (the torus knot's rows only where its mesh exists).
 std::vector<Extreme> all_extremes();
 
 }  // namespace clpt::test

@@ -4,6 +4,7 @@
 // model (host/scene/precision_range.h) calls safe and that is not a documented known issue, or
 // when a known issue unexpectedly passes (the table and the expectations must then be updated).
 //   clpt_extremes_matrix [--presets fast,robust,double] [--only SUBSTRING] [--out FILE]
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -52,6 +53,13 @@ bool kernels_implement_nee() {
   KernelFeatures nee, book;
   nee.estimator = Estimator::Nee;
   return kernel_build_options(nee) != kernel_build_options(book);
+}
+
+// The model's worst estimate over the scene's spheres and meshes' triangles.
+double worst_estimate(const Scene& scene, Precision p) {
+  double worst = worst_sphere_precision(scene, p).relative_error;
+  for (const TrianglePrecision& t : estimate_mesh_precision(scene, p)) worst = std::max(worst, t.relative_error);
+  return worst;
 }
 
 // Why a result is or is not as expected.
@@ -124,9 +132,9 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < extremes.size(); ++i) {
       const Extreme& e = extremes[i];
       table << "| " << e.name << " | "
-            << short_number(worst_sphere_precision(e.scene, Precision::Fast).relative_error) << " / "
-            << short_number(worst_sphere_precision(e.scene, Precision::Robust).relative_error) << " / "
-            << short_number(worst_sphere_precision(e.scene, Precision::Double).relative_error) << " |";
+            << short_number(worst_estimate(e.scene, Precision::Fast)) << " / "
+            << short_number(worst_estimate(e.scene, Precision::Robust)) << " / "
+            << short_number(worst_estimate(e.scene, Precision::Double)) << " |";
       for (const std::string& c : cells[i]) table << " " << c << " |";
       table << "\n";
       if (!e.known_issue.empty()) notes.push_back(e.name + ": " + e.known_issue);

@@ -3,7 +3,8 @@
 // Embree, from Embree's (scene/bvh_embree.cpp); on the device, the hierarchy's closest hit
 // equals testing every primitive, over meshes, spheres in the hierarchy and both mixed; rays aimed
 // at the shared edges and vertices of closed meshes never escape them (watertightness); shadow
-// rays' any-hit answers agree with closest-hit distances.
+// rays' any-hit answers agree with closest-hit distances; and the same watertightness 1e6 away
+// from the world origin.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -269,6 +270,69 @@ TEST(BvhTraversal, ShadowAnyHitAgreesWithClosestHitDistance) {
     }
     EXPECT_GT(hits, 1000);
   }
+}
+
+// The same far from the world origin (issue 35): closed meshes 1e6 away from it, with the camera
+// beside them (small camera-relative coordinates, the usual case) and with the camera at the
+// origin (camera-relative coordinates of 1e6, whose floats are 1/16 apart). Rays start inside and
+// aim at points of the shared edges and at the vertices of the triangles as the device stores them
+// (camera-relative floats), so adjacent triangles share those points exactly; none may escape.
+TEST(BvhTraversal, RaysAtSharedEdgesAndVerticesFarFromTheOriginNeverEscape) {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> u(0, 1), v(-1, 1);
+  const Vec3 far = {1e6, -1e6, 1e6};
+  struct Case {
+    TriangleMesh mesh;
+    Vec3 camera;
+  };
+  const std::vector<Case> cases = {
+      {tessellated_sphere({far[0] + 0.1, far[1] - 0.2, far[2] + 0.3}, 1.7, 64, 96, lambertian(0.5)),
+       {far[0] + 0.25, far[1] - 0.5, far[2] + 7}},
+      {closed_box({far[0] - 1.1, far[1] - 0.9, far[2] - 1.3}, {far[0] + 1.2, far[1] + 1.0, far[2] + 0.8}, lambertian(0.5)),
+       {far[0] + 0.25, far[1] - 0.5, far[2] + 7}},
+      {tessellated_sphere(far, 300, 30, 45, lambertian(0.5)), {0, 0, 0}},
+      {closed_box({far[0] - 200, far[1] - 150, far[2] - 250}, {far[0] + 220, far[1] + 170, far[2] + 180}, lambertian(0.5)),
+       {0, 0, 0}}};
+  int total = 0;
+  for (const Case& c : cases) {
+    Scene scene;
+    scene.file = "far";
+    scene.camera.position = c.camera;
+    scene.camera.look_at = far;
+    scene.meshes = {c.mesh};
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    // The stored triangles' box, camera-relative: the meshes are convex and hold the box of 0.3 of
+    // its smallest half extent around its centre.
+    Vec3 lo = {1e30, 1e30, 1e30}, hi = {-1e30, -1e30, -1e30};
+    for (const GpuTriangle& t : ds.triangles)
+      for (const float* p : {t.v0, t.v1, t.v2})
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], double(p[k])), hi[k] = std::max(hi[k], double(p[k]));
+    const Vec3 centre = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
+    const double r = std::min({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}) / 2;
+    std::vector<Ray> rays;
+    const int per_case = ds.triangles.size() > 100 ? 200000 : 60000;
+    while (int(rays.size()) < per_case) {
+      const GpuTriangle& t = ds.triangles[rng() % ds.triangles.size()];
+      const float* corner[3] = {t.v0, t.v1, t.v2};
+      const int e = int(rng() % 3);
+      const float* a = corner[e];
+      const float* b = corner[(e + 1) % 3];
+      const int pick = int(rng() % 3);  // a vertex, an edge midpoint, a random point on the edge
+      const double f = pick == 0 ? 0.0 : pick == 1 ? 0.5 : u(rng);
+      const Vec3 target = {a[0] + f * (double(b[0]) - a[0]), a[1] + f * (double(b[1]) - a[1]), a[2] + f * (double(b[2]) - a[2])};
+      // A camera-relative origin exact in float, so that query() passes it on unchanged.
+      const Vec3 o = {double(float(centre[0] + 0.3 * r * v(rng))), double(float(centre[1] + 0.3 * r * v(rng))),
+                      double(float(centre[2] + 0.3 * r * v(rng)))};
+      rays.push_back({{c.camera[0] + o[0], c.camera[1] + o[1], c.camera[2] + o[2]},
+                      unit_of({target[0] - o[0], target[1] - o[1], target[2] - o[2]})});
+    }
+    const auto answers = query(scene, ds, rays, false);
+    int escaped = 0;
+    for (const DeviceAnswer& a : answers) escaped += a.triangle < 0 ? 1 : 0;
+    EXPECT_EQ(escaped, 0) << c.mesh.triangles.size() << " triangles, camera at " << c.camera[0];
+    total += int(rays.size());
+  }
+  EXPECT_GE(total, 500000);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "device_test_util.h"
 #include "extreme_check.h"
 #include "render/render_session.h"
 #include "render_test_util.h"
@@ -61,6 +62,52 @@ TEST(ExtremesRobust, SmallSphereFarAwayHasTheAnalyticImage) {
 TEST(ExtremesRobust, CameraGrazingTheFloorSeesTheHorizon) { expect_passes(grazing_camera(1e-4)); }
 
 TEST(ExtremesRobust, AlbedoOneFurnaceIsExactlyTheEmission) { expect_passes(albedo_one_furnace(1e6, 1e7)); }
+
+// The mesh scenes moved far from the origin and scaled (issue 35): the Cornell box (millimetres)
+// translated by 1e6, scaled by 1e-4 and by 1e4, and both at once, and the torus knot small and far,
+// in robust and double: each image against the unit scene's within the films' noise, 4 x 4 blocks.
+std::vector<Extreme> mesh_extremes() {
+  std::vector<Extreme> all = {transformed_mesh_scene("cornell-box", 1, 1e6), transformed_mesh_scene("cornell-box", 1e-4, 0),
+                              transformed_mesh_scene("cornell-box", 1e4, 0),
+                              transformed_mesh_scene("cornell-box", 1e-4, 1e6)};
+  if (mesh_scene_available("torus-knot")) all.push_back(transformed_mesh_scene("torus-knot", 1e-4, 1e6));
+  return all;
+}
+
+void expect_mesh_extremes_pass(Precision precision, const std::string& scene) {
+  ExtremeRun run;
+  run.precision = precision;
+  for (const Extreme& e : mesh_extremes()) run.family_comparisons += comparisons_of(e);
+  int checked = 0;
+  for (const Extreme& e : mesh_extremes()) {
+    if (e.reference_name != scene) continue;
+    ++checked;
+    // The model calls every robust case safe; in double it calls the Cornell box at 1e-4 and 1e6
+    // beyond its proven 4e-7 (its estimate is 6e-7: the host's rounding of 1e6 against 0.01
+    // triangles), which passes here, so only robust's expectation is checked.
+    if (precision == Precision::Robust) {
+      EXPECT_TRUE(precision_range_warnings(e.scene, precision).empty()) << e.name;
+    }
+    const ExtremeResult r = check_extreme(e, run);
+    EXPECT_TRUE(r.pass) << precision_name(precision) << ", " << e.name << ": " << r.detail
+                        << " (worst relative error " << r.worst_relative_error << ")";
+    EXPECT_EQ(r.dropped, 0u) << e.name;
+  }
+  EXPECT_GT(checked, 0);
+}
+
+TEST(ExtremesMeshes, CornellBoxMovedAndScaledGivesTheUnitImage) {
+  expect_mesh_extremes_pass(Precision::Robust, "Cornell box");
+  if (!test_device().device().fp64) GTEST_SKIP() << "the test device has no fp64 (double preset)";
+  expect_mesh_extremes_pass(Precision::Double, "Cornell box");
+}
+
+TEST(ExtremesMeshes, TorusKnotSmallAndFarGivesTheUnitImage) {
+  if (!mesh_scene_available("torus-knot")) GTEST_SKIP() << "scenes/meshes/torus_knot.ply not generated";
+  expect_mesh_extremes_pass(Precision::Robust, "torus knot");
+  if (!test_device().device().fp64) GTEST_SKIP() << "the test device has no fp64 (double preset)";
+  expect_mesh_extremes_pass(Precision::Double, "torus knot");
+}
 
 // 1e7 samples per pixel of exactly 0.7 (2442 passes of at most kMaxSamplesPerPass): the host's
 // double accumulation must keep the mean within 1e-6 (a float running sum would have stalled at

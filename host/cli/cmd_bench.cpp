@@ -23,7 +23,7 @@ struct BenchOptions {
   std::string sampler = "jitter";
   std::string cpu_vector_bits = "auto";
   std::string sphere_reads = "auto";
-  std::string json, baseline;
+  std::string json, baseline, traversal_anchor;
   double tolerance = 10;
   bool no_vector_width = false;
 };
@@ -51,6 +51,8 @@ int run(BenchConfig config, const BenchOptions& o) {
   if (config.devices.empty()) config.devices = {"best"};
   if (!o.json.empty() && ranks.coordinator()) check_output_file("--json", o.json);
   config.measure_vector_width = !o.no_vector_width;
+  if (!o.traversal_anchor.empty()) check_traversal_anchor(o.traversal_anchor, "--traversal-anchor");
+  config.traversal_anchor = o.traversal_anchor;
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
   std::printf("%s", bench_table(rows).c_str());
@@ -103,9 +105,14 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "taken with the same one)")
       ->check(CLI::IsMember(sampler_names()));
   cmd->add_option("--bvh-builders", o->bvh_builders,
-                  "Hierarchy builders: clpt (the default, what renders use), embree, embree-1thread (only in a "
-                  "build with Embree; docs/performance.md \"Traversal\")")
+                  "Hierarchy builders: clpt (the default, what renders use), clpt-1thread (the same hierarchy "
+                  "built on one thread), embree, embree-1thread (only in a build with Embree; "
+                  "docs/performance.md \"Traversal\")")
       ->delimiter(',');
+  cmd->add_option("--traversal-anchor", o->traversal_anchor,
+                  "embree: every row with triangles also times Embree's rtcIntersect1 and rtcIntersect16 on the "
+                  "same triangles and rays as its traversal statistics (only in a build with Embree; "
+                  "docs/performance.md \"Traversal\")");
   cmd->add_flag("--no-vector-width", o->no_vector_width,
                 "Do not measure each row's vector width (one extra small cold compile per row; the lanes "
                 "column and the JSON's vector_width then say not measured)");

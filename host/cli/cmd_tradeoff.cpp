@@ -17,6 +17,7 @@
 #include "kernels/kernel_options.h"
 #include "render/limits.h"
 #include "render/render_session.h"
+#include "render/form_rule.h"
 #include "scene/scene_loader.h"
 #include "tools/gnuplot.h"
 #include "tools/tradeoff.h"
@@ -153,7 +154,7 @@ uint64_t choose_seed(const TradeoffOptions& o, const Scene& scene, const LoadedR
 
 // Every combination, precision outermost and device innermost; forms named "auto" become the
 // device's default. Combinations that come out the same are kept once.
-std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
+std::vector<Combination> resolve_combinations(const TradeoffOptions& o, const Scene& scene) {
   const std::vector<DeviceInfo> all = list_devices();
   std::vector<Combination> out;
   std::set<std::string> seen;
@@ -167,7 +168,7 @@ std::vector<Combination> resolve_combinations(const TradeoffOptions& o) {
           Combination c;
           c.precision = *parse_precision(p);
           c.estimator = *parse_estimator(e);
-          c.form = f == "auto" ? default_form_for(device)
+          c.form = f == "auto" ? default_form_for(device, features_for_scene(scene)).form
                                : f == "wavefront" ? ExecutionForm::Wavefront : ExecutionForm::Megakernel;
           c.sampler = sampler;
           c.adaptive = adaptive == "on";
@@ -299,7 +300,7 @@ int run(const TradeoffOptions& o) {
   result.scene = scene.file;
   result.seed = scene.settings.seed;
   result.reference = ref.info;
-  result.combinations = resolve_combinations(o);
+  result.combinations = resolve_combinations(o, scene);
 
   if (!o.quiet) {
     std::printf("reference %s: %dx%d, %s spp, noise RMS %.4g (RMS standard error of its pixel means)\n",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "render/form_rule.h"
 #include "render/megakernel_renderer.h"
 #include "render/pass_schedule.h"
 #include "render/wavefront_renderer.h"
@@ -40,16 +41,6 @@ std::string half_films_line(const RenderPlan& plan) {
 }
 
 }  // namespace
-
-// The megakernel everywhere. On CPUs (PoCL) it runs its lockstep loop, which PoCL vectorises
-// across work-items with no path state in memory: measured 4x the wavefront's paths/s with
-// `clpt bench` (docs/performance.md); the wavefront's stages move every path's state through
-// memory at every bounce. GPUs run the per-path loop, which keeps paths in registers; no GPU has
-// been measured yet.
-ExecutionForm default_form_for(const DeviceInfo& device) {
-  (void)device;
-  return ExecutionForm::Megakernel;
-}
 
 void check_precision_supported(Precision precision, const DeviceInfo& device) {
   if (precision == Precision::Double && !device.fp64)
@@ -114,13 +105,16 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
   features.cpu_vector_bits = request.cpu_vector_bits;
   features.sphere_reads = request.sphere_reads;
   features.aovs = request.aovs.any();  // the first-hit layers (--aovs): the render's request, not the scene's
+  // The form rule reads the scene's own geometry, whatever kernel runs (render/form_rule.h).
+  const KernelFeatures scene_features = request.generic_kernel ? features_for_scene(scene, request.precision) : features;
 
   for (size_t i = 0; i < devices.size(); ++i) {
     DevicePlan d;
     d.position = i;
     d.device = devices[i];
-    d.form = request.form.value_or(default_form_for(d.device));
-    d.form_reason = request.form ? "--form" : "the device's default";
+    const FormChoice choice = default_form_for(d.device, scene_features);
+    d.form = request.form.value_or(choice.form);
+    d.form_reason = request.form ? "--form" : choice.reason;
     d.features = features;
     d.features.unroll_scene_loops = scene_loops_unrolled_for(request.scene_loops, d.device);
     d.features.cpu_vector_lanes = cpu_vector_lanes_for(request.cpu_vector_bits, d.device);

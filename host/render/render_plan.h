@@ -25,7 +25,7 @@ struct DevicePlan {
   size_t position = 0;  // in the --device list (CLPT_INJECT_FAULT's device number)
   DeviceInfo device;
   ExecutionForm form = ExecutionForm::Megakernel;
-  std::string form_reason;     // why this form: "--form" or the device's default
+  std::string form_reason;     // why this form: "--form" or the rule's reason (render/form_rule.h)
   KernelFeatures features;     // resolved: lockstep_group set for the lockstep loop, else 0
   std::string entry_file;      // the program's kernel file: megakernel.cl or wavefront.cl
   std::string build_options;   // kernel_build_options(features)
@@ -60,9 +60,6 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
 // empty, holds one measured description per device of the plan (tools/vector_width.h, measured by
 // the caller: this stays pure), printed in that device's kernel specialisation block.
 std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>& vector_widths = {});
-
-// The execution form used when none is asked for on this device (docs/design.md, "Execution forms").
-ExecutionForm default_form_for(const DeviceInfo& device);
 
 // Throws Error(Device) naming the device when it cannot run `precision` (double without fp64).
 void check_precision_supported(Precision precision, const DeviceInfo& device);

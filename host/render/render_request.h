@@ -33,7 +33,7 @@ struct RenderRequest {
   std::optional<Intersection> intersection;  // --intersection; unset: the preset's
   bool generic_kernel = false;  // compile every feature, not only what the scene needs
   size_t local_size = 0;        // work-group size; 0 lets the driver choose
-  std::optional<ExecutionForm> form;  // unset: the device's default (default_form_for)
+  std::optional<ExecutionForm> form;  // unset: the rule's (render/form_rule.h, default_form_for)
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // --megakernel-loop
   SceneLoops scene_loops = SceneLoops::Auto;               // --scene-loops
   CpuVectorBits cpu_vector_bits = CpuVectorBits::Auto;     // --cpu-vector-bits

@@ -2,11 +2,19 @@
 // primitives' centroids are binned along each axis, the plane with the least SAH cost
 // (traversal_cost + (A_left N_left + A_right N_right) / A) wins against making a leaf (cost N),
 // and the two sides are built recursively; the node array is filled depth first as it goes.
+// Parallel with std::thread: a large node's right subtree is built on a spare thread into a
+// subtree of its own, stitched after the left one as the serial build would have written it, and
+// a very large node's binning pass is split over spare threads; every split is decided by the same
+// serial rule on the same exact bins, so the hierarchy is the same for any number of threads
+// (BvhBuild.SameTreeForAnyThreadCount).
 #include "scene/bvh_build.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <string>
+#include <thread>
 
 #include "util/clock.h"
 #include "util/error.h"
@@ -69,65 +77,185 @@ void note_bvh_depth(Bvh& bvh, int depth) {
 
 namespace {
 
+// Below this many primitives a subtree is built on the thread that reached it: spawning costs
+// more than the build of a few thousand primitives.
+constexpr size_t kParallelSubtree = 4096;
+// At or above this many primitives a node's binning pass is split over the spare threads.
+constexpr size_t kParallelBinning = 65536;
+
+// BvhBox::grow, inlined into the build's inner loops (as a call it was a third of the build's
+// instructions).
+inline void grow_into(BvhBox& a, const BvhBox& b) {
+  a.lower[0] = b.lower[0] < a.lower[0] ? b.lower[0] : a.lower[0];
+  a.lower[1] = b.lower[1] < a.lower[1] ? b.lower[1] : a.lower[1];
+  a.lower[2] = b.lower[2] < a.lower[2] ? b.lower[2] : a.lower[2];
+  a.upper[0] = b.upper[0] > a.upper[0] ? b.upper[0] : a.upper[0];
+  a.upper[1] = b.upper[1] > a.upper[1] ? b.upper[1] : a.upper[1];
+  a.upper[2] = b.upper[2] > a.upper[2] ? b.upper[2] : a.upper[2];
+}
+
+inline void grow_into(BvhBox& a, const std::array<float, 3>& p) {
+  a.lower[0] = p[0] < a.lower[0] ? p[0] : a.lower[0];
+  a.lower[1] = p[1] < a.lower[1] ? p[1] : a.lower[1];
+  a.lower[2] = p[2] < a.lower[2] ? p[2] : a.lower[2];
+  a.upper[0] = p[0] > a.upper[0] ? p[0] : a.upper[0];
+  a.upper[1] = p[1] > a.upper[1] ? p[1] : a.upper[1];
+  a.upper[2] = p[2] > a.upper[2] ? p[2] : a.upper[2];
+}
+
+// One axis' bins: the primitives' boxes and counts.
+struct Bins {
+  std::array<BvhBox, 32> box;
+  std::array<size_t, 32> count{};
+  void reset(int bins) {
+    for (int b = 0; b < bins; ++b) {
+      box[size_t(b)] = BvhBox();
+      count[size_t(b)] = 0;
+    }
+  }
+};
+
+// Which bin of `bins` along `axis` a centroid falls in.
+struct Binning {
+  std::array<double, 3> lo{}, extent{};  // of the centroids' box; an axis of extent 0 is not binned
+  int bins = 16;
+  int bin(const std::array<float, 3>& c, int axis) const {
+    return std::min(bins - 1, static_cast<int>((c[axis] - lo[axis]) / extent[axis] * bins));
+  }
+};
+
+// The threads a build may still start: a shared count, taken when a thread starts and given back
+// when it ends. Which subtrees get threads then depends on timing, the hierarchy does not: every
+// node is split by the same serial rule, and stitch() lays subtrees out as the serial build does.
+struct ThreadBudget {
+  std::atomic<int> spare{0};
+  bool take() {
+    int n = spare.load();
+    while (n > 0)
+      if (spare.compare_exchange_weak(n, n - 1)) return true;
+    return false;
+  }
+  void give_back() { ++spare; }
+};
+
 struct Builder {
   const BvhBuildOptions& options;
   std::vector<BvhPrimitive> prims;  // reordered in place as ranges are split
   std::vector<std::array<float, 3>> centroids;
-  Bvh out;
+  ThreadBudget threads;
 
   std::array<float, 3> centroid(const BvhPrimitive& p) const {
     return {0.5f * (p.box.lower[0] + p.box.upper[0]), 0.5f * (p.box.lower[1] + p.box.upper[1]),
             0.5f * (p.box.lower[2] + p.box.upper[2])};
   }
 
-  BvhBox bounds(size_t begin, size_t end) const {
-    BvhBox b;
-    for (size_t i = begin; i < end; ++i) b.grow(prims[i].box);
-    return b;
+  // Bins [begin, end) along all three axes at once. Neighbouring primitives tend to fall in the
+  // same bin, whose box each then grows after the other: two sets of bins taken in turn break
+  // that chain, and are merged after (min and max are exact, so the bins are the same).
+  void bin_range(size_t begin, size_t end, const Binning& binning, std::array<Bins, 3>& out) const {
+    auto bin_one = [&](size_t i, std::array<Bins, 3>& bins) {
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(binning.extent[axis] > 0)) continue;
+        const int b = binning.bin(centroids[i], axis);
+        grow_into(bins[size_t(axis)].box[size_t(b)], prims[i].box);
+        ++bins[size_t(axis)].count[size_t(b)];
+      }
+    };
+    if (end - begin < 256) {
+      for (size_t i = begin; i < end; ++i) bin_one(i, out);
+      return;
+    }
+    std::array<Bins, 3> odd;
+    size_t i = begin;
+    for (; i + 1 < end; i += 2) {
+      bin_one(i, out);
+      bin_one(i + 1, odd);
+    }
+    if (i < end) bin_one(i, out);
+    for (int axis = 0; axis < 3; ++axis)
+      for (int b = 0; b < binning.bins; ++b) {
+        grow_into(out[size_t(axis)].box[size_t(b)], odd[size_t(axis)].box[size_t(b)]);
+        out[size_t(axis)].count[size_t(b)] += odd[size_t(axis)].count[size_t(b)];
+      }
   }
 
-  uint32_t push_node(const BvhBox& box) { return push_bvh_node(out, box); }
-
-  // A leaf over [begin, end), all of one kind.
-  void make_leaf(uint32_t node, size_t begin, size_t end) {
-    make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end);
-  }
-
-  // The best binned split of [begin, end): returns the position of the first primitive of the
-  // right side after partitioning, or `begin` when no split beats a leaf (or none exists).
-  size_t split(size_t begin, size_t end, const BvhBox& box) {
+  // The bins of [begin, end): a large range in parallel slices whose bins are merged in slice
+  // order (boxes by min/max and counts by sums: exact, so the same bins for any thread count).
+  void bins_of(size_t begin, size_t end, const Binning& binning, std::array<Bins, 3>& out) {
+    for (Bins& b : out) b.reset(binning.bins);
     const size_t count = end - begin;
-    BvhBox centre_box;
-    for (size_t i = begin; i < end; ++i) centre_box.grow(centroids[i]);
+    std::vector<std::thread> workers;
+    std::vector<std::array<Bins, 3>> parts;
+    if (count >= kParallelBinning) {
+      int extra = 0;
+      while (extra < 7 && threads.take()) ++extra;
+      parts.resize(size_t(extra));
+      const size_t slice = count / size_t(extra + 1);
+      for (int t = 0; t < extra; ++t) {
+        const size_t b = begin + slice * size_t(t + 1), e = t + 1 == extra ? end : b + slice;
+        workers.emplace_back([this, b, e, &binning, &parts, t] { bin_range(b, e, binning, parts[size_t(t)]); });
+      }
+      end = begin + (extra > 0 ? slice : count);
+    }
+    bin_range(begin, end, binning, out);
+    for (size_t t = 0; t < workers.size(); ++t) {
+      workers[t].join();
+      threads.give_back();
+      for (int axis = 0; axis < 3; ++axis)
+        for (int b = 0; b < binning.bins; ++b) {
+          grow_into(out[axis].box[size_t(b)], parts[t][axis].box[size_t(b)]);
+          out[axis].count[size_t(b)] += parts[t][axis].count[size_t(b)];
+        }
+    }
+  }
+
+  // The best binned split of [begin, end) of box `box`: returns the position of the first
+  // primitive of the right side after partitioning, or `begin` when no split beats a leaf (or none
+  // exists); sets the two sides' boxes when it splits by the SAH.
+  // `centre_box` is the box of the range's centroids; the sides' centroid boxes are set with theirs.
+  size_t split(size_t begin, size_t end, const BvhBox& box, const BvhBox& centre_box, BvhBox& left_box,
+               BvhBox& right_box, BvhBox& left_centres, BvhBox& right_centres) {
+    const size_t count = end - begin;
     const int bins = options.bins;
+    Binning binning;
+    binning.bins = bins;
+    for (int axis = 0; axis < 3; ++axis) {
+      binning.lo[axis] = centre_box.lower[axis];
+      binning.extent[axis] = double(centre_box.upper[axis]) - binning.lo[axis];
+    }
+    // Each thread's scratch bins (a split is decided before its sides are built).
+    static thread_local std::array<Bins, 3> all;
+    bins_of(begin, end, binning, all);
     double best_cost = INFINITY;
     int best_axis = -1, best_plane = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const double lo = centre_box.lower[axis], extent = double(centre_box.upper[axis]) - lo;
-      if (!(extent > 0)) continue;
-      std::vector<BvhBox> bin_box(bins);
-      std::vector<size_t> bin_count(bins, 0);
-      for (size_t i = begin; i < end; ++i) {
-        const int b = std::min(bins - 1, static_cast<int>((centroids[i][axis] - lo) / extent * bins));
-        bin_box[b].grow(prims[i].box);
-        ++bin_count[b];
-      }
+      if (!(binning.extent[axis] > 0)) continue;
+      const Bins& bin = all[size_t(axis)];
       // Sweep from the right for the right sides' areas and counts, then from the left.
-      std::vector<double> right_cost(bins, 0);
+      std::array<double, 32> right_cost{};
       BvhBox right;
       size_t right_n = 0;
+      // An empty bin changes neither side: its plane's side cost is its neighbour's, unrecomputed.
+      double side_cost = 0;
       for (int b = bins - 1; b > 0; --b) {
-        right.grow(bin_box[b]);
-        right_n += bin_count[b];
-        right_cost[b] = right.half_area() * double(right_n);
+        if (bin.count[size_t(b)] > 0) {
+          grow_into(right, bin.box[size_t(b)]);
+          right_n += bin.count[size_t(b)];
+          side_cost = right.half_area() * double(right_n);
+        }
+        right_cost[size_t(b)] = side_cost;
       }
       BvhBox left;
       size_t left_n = 0;
+      side_cost = 0;
       for (int plane = 1; plane < bins; ++plane) {
-        left.grow(bin_box[plane - 1]);
-        left_n += bin_count[plane - 1];
+        if (bin.count[size_t(plane - 1)] > 0) {
+          grow_into(left, bin.box[size_t(plane - 1)]);
+          left_n += bin.count[size_t(plane - 1)];
+          side_cost = left.half_area() * double(left_n);
+        }
         if (left_n == 0 || left_n == count) continue;
-        const double cost = left.half_area() * double(left_n) + right_cost[plane];
+        const double cost = side_cost + right_cost[size_t(plane)];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -141,58 +269,147 @@ struct Builder {
     if (best_axis < 0 || (leaf_ok && split_cost >= double(count))) {
       if (leaf_ok || count < 2) return begin;
       // Coincident centroids: halve by index so the recursion ends.
-      return begin + count / 2;
+      const size_t mid = begin + count / 2;
+      left_box = bounds(begin, mid);
+      right_box = bounds(mid, end);
+      left_centres = centre_bounds(begin, mid);
+      right_centres = centre_bounds(mid, end);
+      return mid;
     }
-    const double lo = centre_box.lower[best_axis];
-    const double extent = double(centre_box.upper[best_axis]) - lo;
+    left_box = BvhBox();
+    right_box = BvhBox();
+    const Bins& bin = all[size_t(best_axis)];
+    for (int b = 0; b < bins; ++b) grow_into(b < best_plane ? left_box : right_box, bin.box[size_t(b)]);
+    left_centres = BvhBox();
+    right_centres = BvhBox();
     size_t mid = begin;
     for (size_t i = begin; i < end; ++i) {
-      const int b = std::min(bins - 1, static_cast<int>((centroids[i][best_axis] - lo) / extent * bins));
-      if (b < best_plane) {
+      if (binning.bin(centroids[i], best_axis) < best_plane) {
+        grow_into(left_centres, centroids[i]);
         std::swap(prims[i], prims[mid]);
         std::swap(centroids[i], centroids[mid]);
         ++mid;
+      } else {
+        grow_into(right_centres, centroids[i]);
       }
     }
     return mid;
   }
 
-  void build(size_t begin, size_t end, int depth) {
+  BvhBox bounds(size_t begin, size_t end) const {
+    BvhBox b;
+    for (size_t i = begin; i < end; ++i) grow_into(b, prims[i].box);
+    return b;
+  }
+
+  BvhBox centre_bounds(size_t begin, size_t end) const {
+    BvhBox b;
+    for (size_t i = begin; i < end; ++i) grow_into(b, centroids[i]);
+    return b;
+  }
+
+  // Appends `sub` (a subtree built on its own, indices from 0) to `out` as the serial build lays
+  // it out right after what `out` holds.
+  static void stitch(Bvh& out, const Bvh& sub) {
+    const uint32_t node_base = static_cast<uint32_t>(out.nodes.size());
+    const uint32_t triangle_base = static_cast<uint32_t>(out.triangle_order.size());
+    const uint32_t sphere_base = static_cast<uint32_t>(out.sphere_order.size());
+    for (GpuBvhNode n : sub.nodes) {
+      if (n.count == 0u)
+        n.first += node_base;
+      else
+        n.first += (n.count & CLPT_BVH_SPHERE_LEAF) ? sphere_base : triangle_base;
+      out.nodes.push_back(n);
+    }
+    out.triangle_order.insert(out.triangle_order.end(), sub.triangle_order.begin(), sub.triangle_order.end());
+    out.sphere_order.insert(out.sphere_order.end(), sub.sphere_order.begin(), sub.sphere_order.end());
+    out.depth = std::max(out.depth, sub.depth);
+  }
+
+  // The subtree over [begin, end) (box `box`, centroids' box `centres`) at `depth`, appended to
+  // `out` depth first.
+  void build(size_t begin, size_t end, int depth, const BvhBox& box, const BvhBox& centres, Bvh& out) {
     note_bvh_depth(out, depth);
-    const BvhBox box = bounds(begin, end);
-    const uint32_t node = push_node(box);
-    size_t mid = split(begin, end, box);
+    const uint32_t node = push_bvh_node(out, box);
+    if (end - begin == 1) {  // no split exists: split() would say so after binning
+      make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end);
+      return;
+    }
+    BvhBox left_box, right_box, left_centres, right_centres;
+    size_t mid = split(begin, end, box, centres, left_box, right_box, left_centres, right_centres);
     if (mid == begin) {
       // A leaf, unless it would mix kinds: then spheres and triangles become two leaves.
       const auto sphere_first = std::stable_partition(prims.begin() + begin, prims.begin() + end,
                                                       [](const BvhPrimitive& p) { return p.kind == PrimitiveKind::Sphere; });
       mid = static_cast<size_t>(sphere_first - prims.begin());
       if (mid == begin || mid == end) {
-        make_leaf(node, begin, end);
+        make_bvh_leaf(out, node, prims.data() + begin, prims.data() + end);
         return;
       }
       for (size_t i = begin; i < end; ++i) centroids[i] = centroid(prims[i]);
+      left_box = bounds(begin, mid);
+      right_box = bounds(mid, end);
+      left_centres = centre_bounds(begin, mid);
+      right_centres = centre_bounds(mid, end);
     }
-    build(begin, mid, depth + 1);
+    // The right side on a thread of its own when it is large and one is spare.
+    if (end - mid >= kParallelSubtree && mid - begin >= kParallelSubtree && threads.take()) {
+      Bvh right;
+      std::exception_ptr failed;
+      std::thread worker([&] {
+        try {
+          build(mid, end, depth + 1, right_box, right_centres, right);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+      });
+      try {
+        build(begin, mid, depth + 1, left_box, left_centres, out);
+      } catch (...) {
+        worker.join();
+        threads.give_back();
+        throw;
+      }
+      worker.join();
+      threads.give_back();
+      if (failed) std::rethrow_exception(failed);
+      out.nodes[node].first = static_cast<uint32_t>(out.nodes.size());
+      out.nodes[node].count = 0;
+      stitch(out, right);
+      return;
+    }
+    build(begin, mid, depth + 1, left_box, left_centres, out);
     out.nodes[node].first = static_cast<uint32_t>(out.nodes.size());
     out.nodes[node].count = 0;
-    build(mid, end, depth + 1);
+    build(mid, end, depth + 1, right_box, right_centres, out);
   }
 };
 
 }  // namespace
 
+int bvh_build_threads(const BvhBuildOptions& options) {
+  if (options.threads > 0) return options.threads;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options) {
   const auto start = Clock::now();
+  const double cpu_start = process_cpu_seconds();
+  if (options.bins < 2 || options.bins > 32)
+    throw Error(ExitCode::Failure, "build_bvh: bins must be 2 to 32, not " + std::to_string(options.bins));
   Builder b{options, primitives, {}, {}};
+  b.threads.spare = bvh_build_threads(options) - 1;
+  Bvh out;
   if (!primitives.empty()) {
     b.centroids.reserve(primitives.size());
     for (const BvhPrimitive& p : b.prims) b.centroids.push_back(b.centroid(p));
-    b.out.nodes.reserve(2 * primitives.size());
-    b.build(0, primitives.size(), 1);
+    out.nodes.reserve(2 * primitives.size());
+    b.build(0, primitives.size(), 1, b.bounds(0, primitives.size()), b.centre_bounds(0, primitives.size()), out);
   }
-  b.out.build_seconds = seconds_since(start);
-  return std::move(b.out);
+  out.build_seconds = seconds_since(start);
+  out.build_cpu_seconds = process_cpu_seconds() - cpu_start;
+  out.build_threads = bvh_build_threads(options);
+  return out;
 }
 
 }  // namespace clpt

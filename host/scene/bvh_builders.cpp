@@ -13,6 +13,7 @@ const char* bvh_builder_name(BvhBuilder builder) {
   switch (builder) {
     case BvhBuilder::Embree: return "embree";
     case BvhBuilder::EmbreeOneThread: return "embree-1thread";
+    case BvhBuilder::ClptOneThread: return "clpt-1thread";
     case BvhBuilder::Clpt: break;
   }
   return "clpt";
@@ -27,26 +28,32 @@ bool embree_available() {
 }
 
 BvhBuilder parse_bvh_builder(const std::string& name, const std::string& option) {
-  for (BvhBuilder b : {BvhBuilder::Clpt, BvhBuilder::Embree, BvhBuilder::EmbreeOneThread}) {
+  for (BvhBuilder b : {BvhBuilder::Clpt, BvhBuilder::ClptOneThread, BvhBuilder::Embree, BvhBuilder::EmbreeOneThread}) {
     if (name != bvh_builder_name(b)) continue;
-    if (b != BvhBuilder::Clpt && !embree_available())
+    const bool embree = b == BvhBuilder::Embree || b == BvhBuilder::EmbreeOneThread;
+    if (embree && !embree_available())
       throw Error(ExitCode::Usage, option + " " + name + ": this clpt was built without Embree "
                                    "(install libembree-dev and reconfigure with CMake)");
     return b;
   }
   throw Error(ExitCode::Usage, option + ": unknown hierarchy builder '" + name +
-                                   "' (expected clpt, embree or embree-1thread)");
+                                   "' (expected clpt, clpt-1thread, embree or embree-1thread)");
 }
 
 Bvh build_bvh_with(BvhBuilder builder, const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options) {
+  const bool embree = builder == BvhBuilder::Embree || builder == BvhBuilder::EmbreeOneThread;
 #ifdef CLPT_WITH_EMBREE
-  if (builder != BvhBuilder::Clpt)
-    return build_bvh_embree(primitives, options, builder == BvhBuilder::EmbreeOneThread ? 1 : 0);
+  if (embree) return build_bvh_embree(primitives, options, builder == BvhBuilder::EmbreeOneThread ? 1 : 0);
 #else
-  if (builder != BvhBuilder::Clpt)
+  if (embree)
     throw Error(ExitCode::Usage, std::string("hierarchy builder ") + bvh_builder_name(builder) +
                                      ": this clpt was built without Embree");
 #endif
+  if (builder == BvhBuilder::ClptOneThread) {
+    BvhBuildOptions one = options;
+    one.threads = 1;
+    return build_bvh(primitives, one);
+  }
   return build_bvh(primitives, options);
 }
 

@@ -12,12 +12,13 @@
 namespace clpt {
 
 enum class BvhBuilder {
-  Clpt,             // build_bvh: single-threaded
+  Clpt,             // build_bvh on one thread per hardware thread (the hierarchy is the same for any count)
+  ClptOneThread,    // build_bvh on one thread, for the parallel build's speed-up
   Embree,           // rtcBuildBVH on Embree's default threads (one per hardware thread)
   EmbreeOneThread,  // rtcBuildBVH on one thread, for a like-for-like build time
 };
 
-const char* bvh_builder_name(BvhBuilder builder);  // "clpt", "embree", "embree-1thread"
+const char* bvh_builder_name(BvhBuilder builder);  // "clpt", "clpt-1thread", "embree", "embree-1thread"
 
 // Whether this build has Embree (CMake found libembree-dev: CLPT_WITH_EMBREE).
 bool embree_available();

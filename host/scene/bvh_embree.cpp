@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "util/clock.h"
 #include "util/error.h"
@@ -151,6 +152,7 @@ Bvh build_bvh_embree(const std::vector<BvhPrimitive>& primitives, const BvhBuild
     flat.node(root, 1);
   }
   flat.out.build_seconds = seconds_since(start);
+  flat.out.build_threads = threads > 0 ? threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   return std::move(flat.out);
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "cl/cl_context.h"
 #include "cl/cl_device.h"
@@ -19,6 +20,7 @@
 #include "render/rank_group.h"
 #include "render/render_plan.h"
 #include "render/render_session.h"
+#include "scene/bvh_stats.h"
 #include "scene/device_scene.h"
 #include "scene/scene_loader.h"
 #include "util/byte_buffer.h"
@@ -85,6 +87,22 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.bvh_nodes = ds.bvh.nodes.size();
   row.bvh_depth = ds.bvh.depth;
   row.bvh_build_s = ds.bvh.build_seconds;
+  row.bvh_build_threads = ds.bvh.build_threads;
+  row.bvh_build_cpu_s = ds.bvh.build_cpu_seconds;
+  StatsRaySample sample;
+  if (!ds.bvh.nodes.empty()) {
+    row.sah_cost = bvh_sah_cost(ds.bvh);
+    sample = stats_rays(ds, c.width, c.height);
+    const TraversalCounts counts = measure_traversal(ds, sample).all();
+    row.stats_rays = counts.rays;
+    row.stats_camera_rays = sample.camera_rays;
+    row.nodes_per_ray = counts.per_ray(counts.nodes);
+    row.boxes_per_ray = counts.per_ray(counts.boxes);
+    row.triangles_per_ray = counts.per_ray(counts.triangles);
+    row.spheres_per_ray = counts.per_ray(counts.hierarchy_spheres);
+  }
+  if (!c.traversal_anchor.empty() && row.triangles > 0)
+    row.anchor = time_embree_anchor(ds.triangles, sample, int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
   if (row.triangles > 0)
     row.device_bytes_per_triangle =
         double(row.triangles * (sizeof(GpuTriangle) + sizeof(GpuTriangleShading)) + row.bvh_nodes * sizeof(GpuBvhNode)) /
@@ -214,6 +232,11 @@ nlohmann::json vector_width_json(const BenchRow& r) {
           {"blockers", blockers}};
 }
 
+// clpt's closest-hit rays per CPU-second: its paths per CPU-second times segments per path.
+double rays_per_cpu_s(const BenchRow& r) {
+  return r.paths_per_s.median > 0 ? r.paths_per_cpu_s.median * r.segments_per_s.median / r.paths_per_s.median : 0;
+}
+
 std::string format_rate(const Spread& s) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.2f [%.2f-%.2f]", s.median * 1e-6, s.min * 1e-6, s.max * 1e-6);
@@ -298,11 +321,33 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.bvh_nodes > 0) {
       std::snprintf(line, sizeof line,
-                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s on the host "
-                    "(%s builder); %.1f device B/triangle\n",
+                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s (%.4f CPU-s) on "
+                    "the host (%s builder, %d thread%s); %.1f device B/triangle\n",
                     static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
-                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s,
-                    r.bvh_builder.c_str(), r.device_bytes_per_triangle);
+                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.bvh_build_cpu_s,
+                    r.bvh_builder.c_str(), r.bvh_build_threads, r.bvh_build_threads == 1 ? "" : "s",
+                    r.device_bytes_per_triangle);
+      o << line;
+      std::snprintf(line, sizeof line,
+                    "    traversal: SAH cost %.2f; per ray %.1f nodes, %.1f boxes, %.1f triangles, %.1f spheres "
+                    "(replica over %llu rays: %llu camera + %llu bounce)\n",
+                    r.sah_cost, r.nodes_per_ray, r.boxes_per_ray, r.triangles_per_ray, r.spheres_per_ray,
+                    static_cast<unsigned long long>(r.stats_rays), static_cast<unsigned long long>(r.stats_camera_rays),
+                    static_cast<unsigned long long>(r.stats_rays - r.stats_camera_rays));
+      o << line;
+    }
+    if (r.anchor) {
+      const AnchorRates& a = *r.anchor;
+      const double clpt_cpu = rays_per_cpu_s(r);
+      std::snprintf(line, sizeof line,
+                    "    anchor: clpt %.2f M rays/s (segments/s), %.2f M/CPU-s; %s on %d thread%s, the same triangles "
+                    "and %llu rays: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s, rtcIntersect16 %.2f M rays/s, %.2f "
+                    "M/CPU-s; clpt/rtcIntersect1 %.3f (per CPU-s %.3f)\n",
+                    r.segments_per_s.median * 1e-6, clpt_cpu * 1e-6, a.name.c_str(), a.threads, a.threads == 1 ? "" : "s",
+                    static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
+                    a.packet16_per_s * 1e-6, a.packet16_per_cpu_s * 1e-6,
+                    a.single_per_s > 0 ? r.segments_per_s.median / a.single_per_s : 0.0,
+                    a.single_per_cpu_s > 0 ? clpt_cpu / a.single_per_cpu_s : 0.0);
       o << line;
     }
     for (const RankRate& k : r.ranks) {
@@ -334,9 +379,22 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
                           {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
+                          {"bvh_build_threads", r.bvh_build_threads}, {"bvh_build_cpu_s", r.bvh_build_cpu_s}, {"sah_cost", r.sah_cost},
+                          {"traversal", {{"rays", r.stats_rays}, {"camera_rays", r.stats_camera_rays},
+                                         {"nodes_per_ray", r.nodes_per_ray}, {"boxes_per_ray", r.boxes_per_ray},
+                                         {"triangles_per_ray", r.triangles_per_ray},
+                                         {"spheres_per_ray", r.spheres_per_ray}}},
+                          {"rays_per_s", r.segments_per_s.median}, {"rays_per_cpu_s", rays_per_cpu_s(r)},
                           {"paths_per_s", spread(r.paths_per_s)},
                           {"segments_per_s", spread(r.segments_per_s)}, {"paths_per_cpu_s", spread(r.paths_per_cpu_s)},
                           {"stage_seconds", stages}, {"vector_width", vector_width_json(r)}};
+    if (r.anchor)
+      row["anchor"] = {{"name", r.anchor->name}, {"threads", r.anchor->threads}, {"rays", r.anchor->rays},
+                       {"hits", r.anchor->hits}, {"build_s", r.anchor->build_s},
+                       {"rtcIntersect1_rays_per_s", r.anchor->single_per_s},
+                       {"rtcIntersect16_rays_per_s", r.anchor->packet16_per_s},
+                       {"rtcIntersect1_rays_per_cpu_s", r.anchor->single_per_cpu_s},
+                       {"rtcIntersect16_rays_per_cpu_s", r.anchor->packet16_per_cpu_s}};
     if (!r.ranks.empty()) {
       row["ranks"] = nlohmann::json::array();
       for (const RankRate& k : r.ranks)

@@ -14,6 +14,7 @@
 #include "render/renderer.h"
 #include "scene/bvh_builders.h"
 #include "scene/scene.h"
+#include "tools/traversal_anchor.h"
 #include "tools/vector_width.h"
 
 namespace clpt {
@@ -48,6 +49,9 @@ struct BenchConfig {
   // Measure each row's vector width (tools/vector_width.h): one extra cold compile per row in a
   // child process. Only where this process is the clpt executable (the probe reruns it).
   bool measure_vector_width = false;
+  // --traversal-anchor: "" (none) or "embree": every row with triangles also times Embree's
+  // closest-hit queries on its triangles and the statistics' rays (tools/traversal_anchor.h).
+  std::string traversal_anchor;
 };
 
 struct Spread {
@@ -80,7 +84,18 @@ struct BenchRow {
   int bvh_depth = 0;
   double bvh_build_s = 0;
   double device_bytes_per_triangle = 0;
+  int bvh_build_threads = 1;
+  double bvh_build_cpu_s = 0;  // CPU seconds of the build, all threads (Bvh::build_cpu_seconds)
+  // The hierarchy's statistics (scene/bvh_stats.h): its SAH cost, and per closest-hit ray of the
+  // replica's sample (stats_rays at the row's image size: camera rays, then one diffuse bounce
+  // from each camera hit) the nodes visited, box tests, triangle tests and hierarchy sphere tests.
+  double sah_cost = 0;
+  uint64_t stats_rays = 0, stats_camera_rays = 0;
+  double nodes_per_ray = 0, boxes_per_ray = 0, triangles_per_ray = 0, spheres_per_ray = 0;
   Spread paths_per_s, segments_per_s;
+  // clpt's closest-hit rays/s: its segments/s (every segment of a path is one closest-hit query;
+  // shading, shadow rays and the loop's spheres share the time), the figure set beside the anchor's.
+  std::optional<AnchorRates> anchor;  // --traversal-anchor, rows with triangles
   // Paths per CPU-second of this process (process_cpu_seconds over each timed pass): on a CPU
   // device the figure that holds while other work shares the cores; on a GPU, host time only.
   Spread paths_per_cpu_s;

@@ -1,0 +1,280 @@
+// The hierarchy's statistics (bvh_stats.h): SAH cost, and the replica of the kernels' traversal
+// order in double over a deterministic ray sample.
+#include "scene/bvh_stats.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace clpt {
+namespace {
+
+using D3 = std::array<double, 3>;
+
+D3 sub(const D3& a, const D3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+D3 add_scaled(const D3& a, const D3& b, double s) { return {a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s}; }
+double dot(const D3& a, const D3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+D3 cross(const D3& a, const D3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+D3 normalized(const D3& a) {
+  const double n = std::sqrt(dot(a, a));
+  return n > 0 ? D3{a[0] / n, a[1] / n, a[2] / n} : a;
+}
+D3 load(const float v[3]) { return {v[0], v[1], v[2]}; }
+D3 load(const float v[3], const float lo[3]) {
+  return {double(v[0]) + lo[0], double(v[1]) + lo[1], double(v[2]) + lo[2]};
+}
+
+constexpr double kNoHit = std::numeric_limits<double>::infinity();
+
+double half_area(const GpuBvhNode& n) {
+  const double x = double(n.upper[0]) - n.lower[0], y = double(n.upper[1]) - n.lower[1],
+               z = double(n.upper[2]) - n.lower[2];
+  return x < 0 ? 0 : x * y + y * z + z * x;
+}
+
+// box_entry (kernels/bvh.cl) in double: the entry distance, or kNoHit.
+double box_entry(const GpuBvhNode& n, const D3& o, const D3& inv, double t_max) {
+  double t_near = -kNoHit, t_far = kNoHit;
+  for (int k = 0; k < 3; ++k) {
+    const double a = (double(n.lower[k]) - o[size_t(k)]) * inv[size_t(k)];
+    const double b = (double(n.upper[k]) - o[size_t(k)]) * inv[size_t(k)];
+    t_near = std::max(t_near, std::min(a, b));
+    t_far = std::min(t_far, std::max(a, b));
+  }
+  t_far *= 1.0000004;  // the kernels' 1 + 2 gamma(3)
+  const double entry = std::max(t_near, 0.0);
+  return entry <= t_far && entry < t_max ? entry : kNoHit;
+}
+
+// The nearest t > t_min where the ray meets the sphere (s0, n0, r as stored: centre s0 - r n0).
+double sphere_hit(const GpuSphere& s, const D3& o, const D3& d, double t_min) {
+  const double r = double(s.radius) + s.radius_lo;
+  const D3 centre = add_scaled(load(s.surface_point, s.surface_point_lo), load(s.surface_normal, s.surface_normal_lo), -r);
+  const D3 oc = sub(o, centre);
+  const double a = dot(d, d), b = dot(oc, d), c = dot(oc, oc) - r * r;
+  const double disc = b * b - a * c;
+  if (disc < 0) return kNoHit;
+  const double root = std::sqrt(disc);
+  const double t0 = (-b - root) / a, t1 = (-b + root) / a;
+  if (t0 > t_min) return t0;
+  if (t1 > t_min) return t1;
+  return kNoHit;
+}
+
+// The distance t > 0 where the ray meets the triangle, in double (Moller-Trumbore; the replica
+// needs the same hits as the kernels' watertight test, not its edge rule).
+double triangle_hit(const GpuTriangle& tri, const D3& o, const D3& d) {
+  const D3 v0 = load(tri.v0), e1 = sub(load(tri.v1), v0), e2 = sub(load(tri.v2), v0);
+  const D3 p = cross(d, e2);
+  const double det = dot(e1, p);
+  if (det == 0) return kNoHit;
+  const double inv = 1 / det;
+  const D3 s = sub(o, v0);
+  const double u = dot(s, p) * inv;
+  if (u < 0 || u > 1) return kNoHit;
+  const D3 q = cross(s, e1);
+  const double v = dot(d, q) * inv;
+  if (v < 0 || u + v > 1) return kNoHit;
+  const double t = dot(e2, q) * inv;
+  return t > 0 ? t : kNoHit;
+}
+
+// The kernels' inverse_direction: a zero component becomes 1/(+-1e-30).
+D3 inverse_direction(const D3& d) {
+  D3 inv;
+  for (size_t k = 0; k < 3; ++k) {
+    const double tiny = double(1e-30f);
+    inv[k] = 1 / (std::fabs(d[k]) > tiny ? d[k] : std::copysign(tiny, d[k]));
+  }
+  return inv;
+}
+
+uint64_t splitmix64(uint64_t x) {
+  x += 0x9e3779b97f4a7c15ull;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+
+double unit_double(uint64_t bits) { return double(bits >> 11) * 0x1.0p-53; }
+
+// The geometric unit normal at a hit, and the hit point.
+D3 hit_normal(const DeviceScene& ds, const StatsHit& h, const D3& p) {
+  if (h.triangle >= 0) {
+    const GpuTriangle& t = ds.triangles[size_t(h.triangle)];
+    return normalized(cross(sub(load(t.v1), load(t.v0)), sub(load(t.v2), load(t.v0))));
+  }
+  const GpuSphere& s = ds.spheres[size_t(h.sphere)];
+  const double r = double(s.radius) + s.radius_lo;
+  const D3 centre = add_scaled(load(s.surface_point, s.surface_point_lo), load(s.surface_normal, s.surface_normal_lo), -r);
+  return normalized(sub(p, centre));
+}
+
+}  // namespace
+
+double bvh_sah_cost(const Bvh& bvh, double traversal_cost) {
+  if (bvh.nodes.empty()) return 0;
+  const double root = half_area(bvh.nodes.front());
+  if (!(root > 0)) return 0;
+  double cost = 0;
+  for (const GpuBvhNode& n : bvh.nodes) {
+    const double weight = half_area(n) / root;
+    cost += weight * (n.count == 0u ? traversal_cost : double(n.count & CLPT_BVH_COUNT_MASK));
+  }
+  return cost;
+}
+
+void TraversalCounts::add(const TraversalCounts& o) {
+  rays += o.rays;
+  hits += o.hits;
+  nodes += o.nodes;
+  boxes += o.boxes;
+  triangles += o.triangles;
+  hierarchy_spheres += o.hierarchy_spheres;
+  loop_spheres += o.loop_spheres;
+}
+
+TraversalCounts TraversalStats::all() const {
+  TraversalCounts c = camera;
+  c.add(bounce);
+  return c;
+}
+
+StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, TraversalCounts& counts) {
+  const D3& o = ray.origin;
+  const D3& d = ray.direction;
+  StatsHit hit;
+  hit.t = kNoHit;
+  ++counts.rays;
+  // scene_loop_hit: the loop's spheres first.
+  for (uint32_t i = 0; i < ds.loop_spheres; ++i) {
+    ++counts.loop_spheres;
+    const double t = sphere_hit(ds.spheres[i], o, d, ray.t_min);
+    if (t < hit.t) {
+      hit.t = t;
+      hit.sphere = int(i);
+    }
+  }
+  // bvh_traverse, closest hit.
+  const std::vector<GpuBvhNode>& nodes = ds.bvh.nodes;
+  if (!nodes.empty()) {
+    const D3 inv = inverse_direction(d);
+    uint32_t stack[CLPT_BVH_STACK];
+    uint32_t depth = 0, node = 0;
+    ++counts.boxes;
+    bool done = box_entry(nodes[0], o, inv, hit.t) == kNoHit;
+    bool popped = false;
+    while (!done) {
+      ++counts.nodes;
+      const GpuBvhNode& n = nodes[node];
+      bool pop = true;
+      bool retest_missed = false;
+      if (popped) {
+        ++counts.boxes;
+        retest_missed = box_entry(n, o, inv, hit.t) == kNoHit;
+      }
+      if (retest_missed) {
+        // behind a nearer hit found since it was pushed: not opened
+      } else if (n.count == 0u) {
+        const uint32_t a = node + 1, b = n.first;
+        counts.boxes += 2;
+        const double ta = box_entry(nodes[a], o, inv, hit.t), tb = box_entry(nodes[b], o, inv, hit.t);
+        const bool hit_a = ta < kNoHit, hit_b = tb < kNoHit;
+        if (hit_a || hit_b) {
+          pop = false;
+          const bool a_first = hit_a && (!hit_b || ta <= tb);
+          node = a_first ? a : b;
+          if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
+        }
+      } else {
+        const uint32_t first = n.first, count = n.count & CLPT_BVH_COUNT_MASK;
+        if (n.count & CLPT_BVH_SPHERE_LEAF) {
+          for (uint32_t i = first; i < first + count; ++i) {
+            ++counts.hierarchy_spheres;
+            const uint32_t index = ds.loop_spheres + i;  // the kernels' sphere buffer: loop spheres first
+            const double t = sphere_hit(ds.spheres[index], o, d, ray.t_min);
+            if (t < hit.t) {
+              hit.t = t;
+              hit.sphere = int(index);
+              hit.triangle = -1;
+            }
+          }
+        } else {
+          for (uint32_t i = first; i < first + count; ++i) {
+            ++counts.triangles;
+            const double t = triangle_hit(ds.triangles[i], o, d);
+            if (t < hit.t) {
+              hit.t = t;
+              hit.sphere = -1;
+              hit.triangle = int(i);
+            }
+          }
+        }
+      }
+      popped = pop;
+      if (popped) {
+        done = depth == 0;
+        node = done ? 0 : stack[--depth];
+      }
+    }
+  }
+  if (hit.hit()) ++counts.hits;
+  return hit;
+}
+
+StatsRaySample stats_rays(const DeviceScene& ds, int width, int height, size_t max_camera_rays) {
+  StatsRaySample sample;
+  const double pixels = double(width) * double(height);
+  const int stride = std::max(1, int(std::ceil(std::sqrt(pixels / double(std::max<size_t>(max_camera_rays, 1))) - 1e-9)));
+  const GpuCamera& cam = ds.camera;
+  const bool ortho = cam.projection == CLPT_PROJECTION_ORTHOGRAPHIC;
+  for (int row = stride / 2; row < height; row += stride)
+    for (int col = stride / 2; col < width; col += stride) {
+      // camera_ray (kernels/camera.cl) through the pixel's centre.
+      const double fx = (col + 0.5) / width, fy = ((height - 1 - row) + 0.5) / height;
+      D3 on_sensor = add_scaled(add_scaled(D3{0, 0, 0}, load(cam.sensor_right), fx - 0.5), load(cam.sensor_up), fy - 0.5);
+      StatsRay r;
+      r.t_min = ds.ray_epsilon;
+      if (ortho) {
+        r.origin = on_sensor;
+        r.direction = normalized(load(cam.sensor_center));
+      } else {
+        r.direction = normalized(add_scaled(on_sensor, load(cam.sensor_center), 1.0));
+      }
+      sample.rays.push_back(r);
+    }
+  sample.camera_rays = sample.rays.size();
+  for (size_t i = 0; i < sample.camera_rays; ++i) {
+    const StatsRay camera_ray = sample.rays[i];
+    TraversalCounts ignored;
+    const StatsHit h = replica_closest_hit(ds, camera_ray, ignored);
+    if (!h.hit()) continue;
+    const D3 p = add_scaled(camera_ray.origin, camera_ray.direction, h.t);
+    D3 n = hit_normal(ds, h, p);
+    if (dot(n, camera_ray.direction) > 0) n = {-n[0], -n[1], -n[2]};
+    // A frame about n and a cosine-distributed direction (Malley's method).
+    const D3 helper = std::fabs(n[0]) > 0.9 ? D3{0, 1, 0} : D3{1, 0, 0};
+    const D3 t1 = normalized(cross(helper, n)), t2 = cross(n, t1);
+    const uint64_t bits = splitmix64(uint64_t(i));
+    const double u0 = unit_double(bits), u1 = unit_double(splitmix64(bits));
+    const double radius = std::sqrt(u0), phi = 2 * M_PI * u1;
+    const double x = radius * std::cos(phi), y = radius * std::sin(phi), z = std::sqrt(std::max(0.0, 1 - u0));
+    StatsRay b;
+    b.t_min = ds.ray_epsilon;
+    b.origin = add_scaled(p, n, double(ds.ray_epsilon));
+    b.direction = normalized(add_scaled(add_scaled(D3{n[0] * z, n[1] * z, n[2] * z}, t1, x), t2, y));
+    sample.rays.push_back(b);
+  }
+  return sample;
+}
+
+TraversalStats measure_traversal(const DeviceScene& ds, const StatsRaySample& sample) {
+  TraversalStats stats;
+  for (size_t i = 0; i < sample.rays.size(); ++i)
+    replica_closest_hit(ds, sample.rays[i], i < sample.camera_rays ? stats.camera : stats.bounce);
+  return stats;
+}
+
+}  // namespace clpt

@@ -1,0 +1,191 @@
+// Embree's closest-hit queries as an anchor for clpt's traversal rates (traversal_anchor.h).
+// Without Embree in the build, only the checks exist.
+#include "tools/traversal_anchor.h"
+
+#include "util/error.h"
+
+#ifdef CLPT_WITH_EMBREE
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include "util/clock.h"
+#endif
+
+namespace clpt {
+
+bool traversal_anchor_available(const std::string& name) {
+#ifdef CLPT_WITH_EMBREE
+  return name == "embree";
+#else
+  (void)name;
+  return false;
+#endif
+}
+
+void check_traversal_anchor(const std::string& name, const std::string& option) {
+  if (name != "embree")
+    throw Error(ExitCode::Usage, option + ": unknown anchor '" + name + "' (expected embree)");
+  if (!traversal_anchor_available(name))
+    throw Error(ExitCode::Usage, option + " " + name + ": this clpt was built without Embree "
+                                 "(install libembree-dev and reconfigure with CMake)");
+}
+
+#ifdef CLPT_WITH_EMBREE
+namespace {
+
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  ~EmbreeScene() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+void set_ray(RTCRayHit& rh, const StatsRay& r) {
+  rh.ray.org_x = float(r.origin[0]);
+  rh.ray.org_y = float(r.origin[1]);
+  rh.ray.org_z = float(r.origin[2]);
+  rh.ray.dir_x = float(r.direction[0]);
+  rh.ray.dir_y = float(r.direction[1]);
+  rh.ray.dir_z = float(r.direction[2]);
+  rh.ray.tnear = 0;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.time = 0;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+// One pass of rays [begin, end) of the sample: hits.
+uint64_t pass_single(RTCScene scene, const std::vector<StatsRay>& rays, size_t begin, size_t end) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  uint64_t hits = 0;
+  for (size_t i = begin; i < end; ++i) {
+    RTCRayHit rh;
+    set_ray(rh, rays[i]);
+    rtcIntersect1(scene, &context, &rh);
+    hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+  }
+  return hits;
+}
+
+uint64_t pass_packets(RTCScene scene, const std::vector<StatsRay>& rays, size_t begin, size_t end) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  uint64_t hits = 0;
+  alignas(64) RTCRayHit16 packet;
+  alignas(64) int valid[16];
+  for (size_t i = begin; i < end; i += 16) {
+    for (size_t k = 0; k < 16; ++k) {
+      const bool live = i + k < end;
+      valid[k] = live ? -1 : 0;
+      RTCRayHit rh;
+      set_ray(rh, rays[live ? i + k : i]);
+      packet.ray.org_x[k] = rh.ray.org_x;
+      packet.ray.org_y[k] = rh.ray.org_y;
+      packet.ray.org_z[k] = rh.ray.org_z;
+      packet.ray.dir_x[k] = rh.ray.dir_x;
+      packet.ray.dir_y[k] = rh.ray.dir_y;
+      packet.ray.dir_z[k] = rh.ray.dir_z;
+      packet.ray.tnear[k] = 0;
+      packet.ray.tfar[k] = rh.ray.tfar;
+      packet.ray.time[k] = 0;
+      packet.ray.mask[k] = ~0u;
+      packet.ray.id[k] = 0;
+      packet.ray.flags[k] = 0;
+      packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, scene, &context, &packet);
+    for (size_t k = 0; k < 16; ++k) hits += valid[k] && packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+  }
+  return hits;
+}
+
+// Rays/s of `pass` over the sample on `threads` threads, whole passes until min_seconds.
+template <typename Pass>
+double rate(const Pass& pass, RTCScene scene, const std::vector<StatsRay>& rays, int threads, double min_seconds,
+            uint64_t& hits, double& per_cpu_s) {
+  const size_t n = rays.size();
+  // Slices of whole packets, so that both queries split the sample alike.
+  const size_t slice = ((n + size_t(threads) - 1) / size_t(threads) + 15) / 16 * 16;
+  uint64_t passes = 0;
+  const auto start = Clock::now();
+  const double cpu_start = process_cpu_seconds();
+  double elapsed = 0;
+  do {
+    std::vector<std::thread> workers;
+    std::vector<uint64_t> slice_hits(size_t(threads), 0);
+    for (int t = 0; t < threads; ++t) {
+      const size_t b = std::min(n, slice * size_t(t)), e = std::min(n, b + slice);
+      workers.emplace_back([&, b, e, t] { slice_hits[size_t(t)] = pass(scene, rays, b, e); });
+    }
+    for (std::thread& w : workers) w.join();
+    hits = 0;
+    for (uint64_t h : slice_hits) hits += h;
+    ++passes;
+    elapsed = seconds_since(start);
+  } while (elapsed < min_seconds);
+  per_cpu_s = double(passes) * double(n) / std::max(process_cpu_seconds() - cpu_start, 1e-9);
+  return double(passes) * double(n) / elapsed;
+}
+
+}  // namespace
+
+AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const StatsRaySample& sample, int threads,
+                               double min_seconds) {
+  AnchorRates out;
+  out.name = "embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
+             std::to_string(RTC_VERSION_PATCH);
+  out.threads = std::max(1, threads);
+  out.rays = sample.rays.size();
+  if (triangles.empty() || sample.rays.empty()) return out;
+  EmbreeScene e;
+  const std::string config = "threads=" + std::to_string(out.threads);
+  e.device = rtcNewDevice(config.c_str());
+  if (!e.device) throw Error(ExitCode::Failure, "--traversal-anchor embree: rtcNewDevice failed");
+  e.scene = rtcNewScene(e.device);
+  rtcSetSceneBuildQuality(e.scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geometry = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                               3 * sizeof(float), 3 * triangles.size()));
+  auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), triangles.size()));
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const GpuTriangle& t = triangles[i];
+    for (int k = 0; k < 3; ++k) {
+      vertices[9 * i + size_t(k)] = t.v0[k];
+      vertices[9 * i + 3 + size_t(k)] = t.v1[k];
+      vertices[9 * i + 6 + size_t(k)] = t.v2[k];
+    }
+    for (unsigned k = 0; k < 3; ++k) indices[3 * i + k] = unsigned(3 * i + k);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(e.scene, geometry);
+  rtcReleaseGeometry(geometry);
+  const auto start = Clock::now();
+  rtcCommitScene(e.scene);
+  out.build_s = seconds_since(start);
+  if (rtcGetDeviceError(e.device) != RTC_ERROR_NONE)
+    throw Error(ExitCode::Failure, "--traversal-anchor embree: Embree failed to build the scene");
+  out.single_per_s = rate(pass_single, e.scene, sample.rays, out.threads, min_seconds, out.hits, out.single_per_cpu_s);
+  out.packet16_per_s =
+      rate(pass_packets, e.scene, sample.rays, out.threads, min_seconds, out.packet_hits, out.packet16_per_cpu_s);
+  return out;
+}
+#else
+AnchorRates time_embree_anchor(const std::vector<GpuTriangle>&, const StatsRaySample&, int, double) {
+  throw Error(ExitCode::Usage, "--traversal-anchor embree: this clpt was built without Embree");
+}
+#endif
+
+}  // namespace clpt

@@ -1,0 +1,44 @@
+// `clpt bench --traversal-anchor embree`: Embree's own closest-hit queries timed on a row's
+// triangles and rays, beside clpt's rays/s (docs/performance.md, "Traversal"). Only in a build
+// that found libembree-dev (CMake: CLPT_WITH_EMBREE); renders never use it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "kernels/types.h"
+#include "scene/bvh_stats.h"
+
+namespace clpt {
+
+// Whether this build can time `name` ("embree": a build with Embree).
+bool traversal_anchor_available(const std::string& name);
+
+// Checks a --traversal-anchor value: "embree", in a build with Embree. Throws
+// Error(ExitCode::Usage) naming `option` otherwise.
+void check_traversal_anchor(const std::string& name, const std::string& option);
+
+// Embree's closest-hit rates on `triangles` (the device scene's, camera-relative float, as the
+// kernels intersect them) for the rays of `sample` (their origins and directions in float, from
+// t = 0): rtcIntersect1 one ray per call, and rtcIntersect16 on packets of 16 consecutive rays of
+// the sample; each timed over whole passes of the sample, repeated until min_seconds have passed,
+// on `threads` threads (each its own slice of the sample). The scene is built once
+// (RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH: Embree's best hierarchy for tracing), not timed.
+struct AnchorRates {
+  std::string name;            // "embree 3.13.5"
+  int threads = 1;
+  uint64_t rays = 0;           // per pass: the sample's rays
+  uint64_t hits = 0;           // of one pass of rtcIntersect1 (a check: the same with packets)
+  uint64_t packet_hits = 0;
+  double build_s = 0;          // rtcCommitScene, for information
+  double single_per_s = 0;     // rays/s, rtcIntersect1
+  double packet16_per_s = 0;   // rays/s, rtcIntersect16
+  // Rays per CPU-second of this process (all its threads) over the same passes: the figures that
+  // hold while other work shares the cores, beside clpt's rays per CPU-second.
+  double single_per_cpu_s = 0, packet16_per_cpu_s = 0;
+};
+AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const StatsRaySample& sample, int threads,
+                               double min_seconds);
+
+}  // namespace clpt

@@ -1,0 +1,257 @@
+// The hierarchy's statistics and build (scene/bvh_stats.cpp, scene/bvh_build.cpp) and the
+// execution-form rule (render/form_rule.cpp): the SAH cost of a hand-built tree equals its closed
+// form; the traversal replica counts the nodes, boxes and triangles of kernels/bvh.cl's order on a
+// tiny known tree; the ray sample is deterministic; the parallel build writes the same hierarchy
+// for any thread count; the form rule picks by the scene's geometry and --form overrides it.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <random>
+
+#include "mesh_test_util.h"
+#include "render/form_rule.h"
+#include "render/render_plan.h"
+#include "scene/bvh_stats.h"
+#include "scene/scene_loader.h"
+
+namespace clpt::test {
+namespace {
+
+GpuBvhNode node(std::array<float, 3> lower, std::array<float, 3> upper, uint32_t first, uint32_t count) {
+  GpuBvhNode n{};
+  for (int k = 0; k < 3; ++k) {
+    n.lower[k] = lower[size_t(k)];
+    n.upper[k] = upper[size_t(k)];
+  }
+  n.first = first;
+  n.count = count;
+  return n;
+}
+
+TEST(BvhStats, SahCostOfAHandBuiltTreeIsTheClosedForm) {
+  // Root [0,2]x[0,1]x[0,1] (half area 2 + 1 + 2 = 5) over a leaf of 2 primitives in [0,1]^3 (half
+  // area 3) and a leaf of 1 in [1,2]x[0,1]^2 (3): 1 * 5/5 + 2 * 3/5 + 1 * 3/5 = 2.8 with a node
+  // cost of 1; 2 * 5/5 + 9/5 = 3.8 with 2.
+  Bvh bvh;
+  bvh.nodes = {node({0, 0, 0}, {2, 1, 1}, 2, 0), node({0, 0, 0}, {1, 1, 1}, 0, 2), node({1, 0, 0}, {2, 1, 1}, 2, 1)};
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(bvh), 2.8);
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(bvh, 2.0), 3.8);
+  // A single leaf: its count. No nodes: 0.
+  Bvh leaf;
+  leaf.nodes = {node({0, 0, 0}, {1, 2, 3}, 0, 4)};
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 4.0);
+  EXPECT_EQ(bvh_sah_cost(Bvh()), 0.0);
+}
+
+TEST(BvhStats, SahCostOfTheBuildersTreeIsItsRecursiveCost) {
+  // The closed form against the recursion cost(n) = C_t + (A_l cost(l) + A_r cost(r)) / A_n.
+  std::mt19937 rng(3);
+  Scene scene;
+  scene.camera.position = {0, 0, 8};
+  scene.meshes = {random_soup(rng, 2000, {0, 0, 0}, 2.0, 0.3, lambertian(0.5))};
+  const DeviceScene ds = make_device_scene(scene, 4, 3);
+  const std::vector<GpuBvhNode>& n = ds.bvh.nodes;
+  auto area = [](const GpuBvhNode& b) {
+    const double x = double(b.upper[0]) - b.lower[0], y = double(b.upper[1]) - b.lower[1], z = double(b.upper[2]) - b.lower[2];
+    return x * y + y * z + z * x;
+  };
+  std::function<double(uint32_t)> cost = [&](uint32_t i) -> double {
+    if (n[i].count != 0) return double(n[i].count & CLPT_BVH_COUNT_MASK);
+    return 1.0 + (area(n[i + 1]) * cost(i + 1) + area(n[n[i].first]) * cost(n[i].first)) / area(n[i]);
+  };
+  EXPECT_NEAR(bvh_sah_cost(ds.bvh), cost(0), 1e-9 * cost(0));
+  // A binned SAH tree over 2000 triangles costs far less than testing them all.
+  EXPECT_LT(bvh_sah_cost(ds.bvh), 100.0);
+}
+
+GpuTriangle triangle_at_z(float z) {
+  GpuTriangle t{};
+  const float v[3][3] = {{0, 0, z}, {1, 0, z}, {0, 1, z}};
+  std::memcpy(t.v0, v[0], sizeof t.v0);
+  std::memcpy(t.v1, v[1], sizeof t.v1);
+  std::memcpy(t.v2, v[2], sizeof t.v2);
+  return t;
+}
+
+// Two leaves along z, one triangle each (z = 0.5 and z = 2.5, the corner x, y in [0, 1], x + y <= 1).
+DeviceScene two_leaf_scene() {
+  DeviceScene ds;
+  ds.triangles = {triangle_at_z(0.5f), triangle_at_z(2.5f)};
+  ds.bvh.nodes = {node({0, 0, 0}, {1, 1, 3}, 2, 0), node({0, 0, 0}, {1, 1, 1}, 0, 1), node({0, 0, 2}, {1, 1, 3}, 1, 1)};
+  return ds;
+}
+
+StatsRay ray(std::array<double, 3> o, std::array<double, 3> d) {
+  StatsRay r;
+  r.origin = o;
+  r.direction = d;
+  return r;
+}
+
+TEST(BvhStats, ReplicaCountsTheKernelsOrderOnATinyTree) {
+  const DeviceScene ds = two_leaf_scene();
+  {
+    // +z: root, then both children hit, the nearer (node 1) first: its triangle at t = 1.5; node 2
+    // popped, its box tested again (entry 3 > 1.5) and not opened.
+    TraversalCounts c;
+    const StatsHit h = replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0, 1}), c);
+    EXPECT_EQ(h.triangle, 0);
+    EXPECT_DOUBLE_EQ(h.t, 1.5);
+    EXPECT_EQ(c.nodes, 3u);
+    EXPECT_EQ(c.boxes, 4u);
+    EXPECT_EQ(c.triangles, 1u);
+    EXPECT_EQ(c.hits, 1u);
+  }
+  {
+    // -z from above: node 2 is nearer now.
+    TraversalCounts c;
+    const StatsHit h = replica_closest_hit(ds, ray({0.25, 0.25, 4}, {0, 0, -1}), c);
+    EXPECT_EQ(h.triangle, 1);
+    EXPECT_DOUBLE_EQ(h.t, 1.5);
+    EXPECT_EQ(c.nodes, 3u);
+    EXPECT_EQ(c.boxes, 4u);
+    EXPECT_EQ(c.triangles, 1u);
+  }
+  {
+    // Through both boxes, beside both triangles (x + y > 1): both leaves opened.
+    TraversalCounts c;
+    const StatsHit h = replica_closest_hit(ds, ray({0.9, 0.9, -1}, {0, 0, 1}), c);
+    EXPECT_FALSE(h.hit());
+    EXPECT_EQ(c.nodes, 3u);
+    EXPECT_EQ(c.boxes, 4u);
+    EXPECT_EQ(c.triangles, 2u);
+    EXPECT_EQ(c.hits, 0u);
+  }
+  {
+    // Only the lower box (leaving the root's y range at z = 0.5, beside the triangle there): root,
+    // node 1, then nothing to pop.
+    TraversalCounts c;
+    EXPECT_FALSE(replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0.5, 1}), c).hit());
+    EXPECT_EQ(c.nodes, 2u);
+    EXPECT_EQ(c.boxes, 3u);
+    EXPECT_EQ(c.triangles, 1u);
+  }
+  {
+    // Beside the root: one box test, no node visited.
+    TraversalCounts c;
+    replica_closest_hit(ds, ray({5, 5, -1}, {0, 0, 1}), c);
+    EXPECT_EQ(c.nodes, 0u);
+    EXPECT_EQ(c.boxes, 1u);
+    EXPECT_EQ(c.rays, 1u);
+  }
+}
+
+TEST(BvhStats, RaySampleIsDeterministicAndSeesTheCornellBox) {
+  const std::string file = std::string(CLPT_SOURCE_DIR) + "/scenes/cornell-box.toml";
+  const Scene scene = load_scene_file(file);
+  const DeviceScene ds = make_device_scene(scene, 64, 48);
+  const StatsRaySample a = stats_rays(ds, 64, 48, 768), b = stats_rays(ds, 64, 48, 768);
+  // stride ceil(sqrt(3072 / 768)) = 2: 32 x 24 camera rays.
+  EXPECT_EQ(a.camera_rays, 32u * 24u);
+  ASSERT_EQ(a.rays.size(), b.rays.size());
+  EXPECT_GT(a.rays.size(), a.camera_rays);  // bounce rays from the hits
+  EXPECT_EQ(std::memcmp(a.rays.data(), b.rays.data(), a.rays.size() * sizeof(StatsRay)), 0);
+  const TraversalStats s = measure_traversal(ds, a);
+  EXPECT_EQ(s.camera.rays, a.camera_rays);
+  EXPECT_EQ(s.bounce.rays, a.rays.size() - a.camera_rays);
+  // The box fills most of the view (the rest is the dark outside), and is closed but for its front:
+  // most bounce rays hit a wall.
+  EXPECT_GT(s.camera.hits, s.camera.rays / 2);  // 529 of 768 at 64x48 (a wider image than the box)
+  EXPECT_GT(s.bounce.hits, s.bounce.rays / 2);
+  const TraversalCounts all = s.all();
+  EXPECT_GE(all.per_ray(all.nodes), 1.0);
+  EXPECT_GE(all.per_ray(all.triangles), 1.0);
+  EXPECT_LE(all.per_ray(all.triangles), double(ds.triangles.size()));
+}
+
+TEST(BvhBuild, SameTreeForAnyThreadCount) {
+  // Enough primitives for parallel subtrees and a parallel binning pass at the root.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-10, 10), size(0.001f, 0.2f);
+  std::vector<BvhPrimitive> prims;
+  for (uint32_t i = 0; i < 150000; ++i) {
+    BvhPrimitive p;
+    p.index = i;
+    // Clustered, with some spheres, so that the tree is uneven and has leaves of both kinds.
+    const float cx = u(rng) * (i % 3 == 0 ? 0.1f : 1.0f), cy = u(rng), cz = u(rng) * 0.5f, s = size(rng);
+    p.box.lower = {cx - s, cy - s, cz - s};
+    p.box.upper = {cx + s, cy + s, cz + s};
+    p.kind = i % 17 == 0 ? PrimitiveKind::Sphere : PrimitiveKind::Triangle;
+    prims.push_back(p);
+  }
+  BvhBuildOptions one;
+  one.threads = 1;
+  const Bvh reference = build_bvh(prims, one);
+  ASSERT_GT(reference.nodes.size(), 1000u);
+  for (int threads : {2, 3, 8}) {
+    SCOPED_TRACE(threads);
+    BvhBuildOptions o;
+    o.threads = threads;
+    const Bvh b = build_bvh(prims, o);
+    EXPECT_EQ(b.build_threads, threads);
+    ASSERT_EQ(b.nodes.size(), reference.nodes.size());
+    EXPECT_EQ(std::memcmp(b.nodes.data(), reference.nodes.data(), b.nodes.size() * sizeof(GpuBvhNode)), 0);
+    EXPECT_EQ(b.triangle_order, reference.triangle_order);
+    EXPECT_EQ(b.sphere_order, reference.sphere_order);
+    EXPECT_EQ(b.depth, reference.depth);
+  }
+}
+
+DeviceInfo device_of(bool cpu) {
+  DeviceInfo d;
+  d.name = cpu ? "test CPU" : "test GPU";
+  d.is_cpu = cpu;
+  d.is_gpu = !cpu;
+  return d;
+}
+
+TEST(FormRule, PicksTheWavefrontOnCpusForMeshOnlyScenes) {
+  KernelFeatures spheres;
+  spheres.triangles = false;
+  spheres.sphere_count = 8;
+  KernelFeatures sphere_tree = spheres;
+  sphere_tree.spheres_in_bvh = true;
+  sphere_tree.sphere_count = 7;  // the large ones stay in the loop
+  KernelFeatures mesh_in_room;
+  mesh_in_room.triangles = true;
+  mesh_in_room.sphere_count = 6;
+  KernelFeatures mesh_only;
+  mesh_only.triangles = true;
+  mesh_only.sphere_count = 0;
+  EXPECT_EQ(scene_geometry(spheres), SceneGeometry::LoopSpheres);
+  EXPECT_EQ(scene_geometry(sphere_tree), SceneGeometry::SphereHierarchy);
+  EXPECT_EQ(scene_geometry(mesh_in_room), SceneGeometry::MeshesAndSpheres);
+  EXPECT_EQ(scene_geometry(mesh_only), SceneGeometry::MeshesOnly);
+  const DeviceInfo cpu = device_of(true), gpu = device_of(false);
+  EXPECT_EQ(default_form_for(cpu, spheres).form, ExecutionForm::Megakernel);
+  EXPECT_EQ(default_form_for(cpu, sphere_tree).form, ExecutionForm::Megakernel);
+  EXPECT_EQ(default_form_for(cpu, mesh_in_room).form, ExecutionForm::Megakernel);
+  EXPECT_EQ(default_form_for(cpu, mesh_only).form, ExecutionForm::Wavefront);
+  EXPECT_NE(default_form_for(cpu, mesh_only).reason.find("meshes only"), std::string::npos);
+  for (const KernelFeatures& f : {spheres, sphere_tree, mesh_in_room, mesh_only})
+    EXPECT_EQ(default_form_for(gpu, f).form, ExecutionForm::Megakernel);
+}
+
+TEST(FormRule, ThePlanTakesTheRuleUnlessFormIsGiven) {
+  RenderRequest request;
+  request.scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/cornell-box.toml");
+  const DeviceInfo cpu = device_of(true);
+  RenderPlan plan = plan_render(request, {cpu});
+  EXPECT_EQ(plan.devices.front().form, ExecutionForm::Wavefront);
+  EXPECT_NE(plan.devices.front().form_reason.find("meshes only"), std::string::npos);
+  EXPECT_NE(explain_plan(plan).find("execution form: wavefront (the default on a CPU"), std::string::npos);
+  // The generic kernel has every feature compiled, but the rule reads the scene's geometry.
+  request.generic_kernel = true;
+  EXPECT_EQ(plan_render(request, {cpu}).devices.front().form, ExecutionForm::Wavefront);
+  request.form = ExecutionForm::Megakernel;
+  plan = plan_render(request, {cpu});
+  EXPECT_EQ(plan.devices.front().form, ExecutionForm::Megakernel);
+  EXPECT_EQ(plan.devices.front().form_reason, "--form");
+  request = RenderRequest();
+  request.scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/diffuse.toml");
+  EXPECT_EQ(plan_render(request, {cpu}).devices.front().form, ExecutionForm::Megakernel);
+}
+
+}  // namespace
+}  // namespace clpt::test
