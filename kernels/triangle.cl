@@ -37,10 +37,14 @@ CLPT_INLINE real v3_component(Vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v
 
 CLPT_INLINE ShearedRay sheared_ray(Vec3 o, Vec3 d) {
   ShearedRay r;
+#if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
   /* z's magnitude by a select, not fabs: LLVM's SLP vectoriser pairs two like fabs into a
    * <2 x float>, which stops PoCL's work-item vectoriser where this runs vectorised (the triangle
    * loop, triangle_loop.cl). The same values. */
   const real ax = fabs(d.x), ay = fabs(d.y), az = d.z < (real)0 ? -d.z : d.z;
+#else
+  const real ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+#endif
   const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
   int kx = kz == 2 ? 0 : kz + 1;
   int ky = kx == 2 ? 0 : kx + 1;
