@@ -21,6 +21,7 @@
 #include "maths.cl"
 #include "intersect.cl"
 #include "triangle.cl"
+#include "triangle_loop.cl"
 
 #ifndef CLPT_HAS_BVH
 #define CLPT_HAS_BVH 1
@@ -167,10 +168,17 @@ CLPT_INLINE Hit no_hit(void) {
   return hit;
 }
 
-/* Closest hit over the loop's spheres alone (loop-free once unrolled: the first half of
- * scene_closest_hit, which the lockstep megakernel runs in its own vectorised region). */
+/* Closest hit over the loop's spheres, and a small mesh's triangles where they are in a loop too
+ * (triangle_loop.cl), alone (loop-free once unrolled: the first half of scene_closest_hit, which
+ * the lockstep megakernel runs in its own vectorised region). */
 CLPT_INLINE Hit scene_loop_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d, int skip) {
+#if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
+  Hit hit = scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
+  triangle_loop_hit(scene->triangles, o, d, &hit);
+  return hit;
+#else
   return scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
+#endif
 }
 
 /* Narrows `hit` (the loop's closest hit, or no_hit()) to the hierarchy's closest hit before hit->t:

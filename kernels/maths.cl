@@ -111,10 +111,13 @@ CLPT_INLINE Vec3 v3_load(const float v[3]) { return v3(v[0], CLPT_Y_OF(v), v[2])
  * megakernel's work-item loop as above. They are the same for every work-item, so the extra read
  * is one per work-group, not a gather. */
 CLPT_INLINE Vec3 v3_load_apart(const float v[3]) { return v3(v[0], CLPT_Y_APART(v), v[2]); }
-/* A buffer's float[3] as v3_load_global, with y read apart where the kernels pick a sphere's fields
+/* A scene buffer's float[3] (a sphere's, a material's, a triangle's) as v3_load_global, with y read
+ * apart where the kernels pick a sphere's fields
  * by selects (CLPT_NO_FAST_GATHER, CLPT_MATERIAL_BY_SELECT): the picks' reads are the same for
- * every work-item, and SLP pairs adjacent ones as it pairs the camera's. */
-#if CLPT_NO_FAST_GATHER || CLPT_MATERIAL_BY_SELECT
+ * every work-item, and SLP pairs adjacent ones as it pairs the camera's. Likewise in the kernels
+ * of a small mesh in the triangle loop (CLPT_TRIANGLE_COUNT, triangle_loop.cl), whose shading
+ * reads the hit triangle's material in a vectorised region: SLP pairs its reflectance's x and y. */
+#if CLPT_NO_FAST_GATHER || CLPT_MATERIAL_BY_SELECT || (defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0)
 #define v3_load_sphere_field(v) v3((v)[0], CLPT_Y_APART(v), (v)[2])
 #else
 #define v3_load_sphere_field(v) v3_load_global(v)

@@ -474,12 +474,16 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
    * find the emitter first (when the lights are in the loop), the hierarchy nothing before it;
    * for a triangle light, the loop's spheres nothing before its target. */
 #if CLPT_LIGHT_PICK_BY_POWER
-  const bool loop_clear = params->sphere_count == 0u ||
-                          ((to_target || shadow.sphere == ls.sphere) && shadow.t >= near_light);
+  bool loop_clear = params->sphere_count == 0u ||
+                    ((to_target || shadow.sphere == ls.sphere) && shadow.t >= near_light);
   const Vec3 emission = ls.emission;
 #else
-  const bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
+  bool loop_clear = params->sphere_count == 0u || (shadow.sphere == ls.sphere && shadow.t >= near_light);
   const Vec3 emission = v3_load_global(scene->spheres[ls.sphere].material.emission);
+#endif
+#if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
+  /* A small mesh's triangles in their loop (triangle_loop.cl): none before the light either. */
+  loop_clear = loop_clear & !triangle_loop_blocked(scene->triangles, origin, shadow_direction, near_light, skip_triangle);
 #endif
   /* int operands and `&`, not `&&`: f_cos's reads behind a short-circuit would be masked loads
    * (maths.cl, v3_is_zero). */

@@ -38,7 +38,14 @@ CLPT_INLINE real v3_component(Vec3 v, int k) { return k == 0 ? v.x : (k == 1 ? v
 
 CLPT_INLINE ShearedRay sheared_ray(Vec3 o, Vec3 d) {
   ShearedRay r;
+#if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
+  /* z's magnitude by a select, not fabs: LLVM's SLP vectoriser pairs two like fabs into a
+   * <2 x float>, which stops PoCL's work-item vectoriser where this runs vectorised (the triangle
+   * loop, triangle_loop.cl). The same values. */
+  const real ax = fabs(d.x), ay = fabs(d.y), az = d.z < (real)0 ? -d.z : d.z;
+#else
   const real ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+#endif
   const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
   int kx = kz == 2 ? 0 : kz + 1;
   int ky = kx == 2 ? 0 : kx + 1;
@@ -66,14 +73,16 @@ typedef struct TriangleTest {
   CLPT_ABI_PAD(int, 3)
 } TriangleTest;
 
-CLPT_INLINE TriangleTest triangle_test(const ShearedRay* ray, __global const GpuTriangle* tri) {
+/* The test against the triangle of vertices v0, v1, v2 (triangle_test reads them from the buffer;
+ * triangle_loop.cl reads them its own way). */
+CLPT_INLINE TriangleTest triangle_test_of(const ShearedRay* ray, Vec3 v0, Vec3 v1, Vec3 v2) {
   /* No fused multiply-add here: the edge function of an edge is the exact negation of its
    * neighbour's only when both products are rounded alike (fma(a, b, -c d) is not -fma(c, d, -a b));
    * with contraction, 2% of the rays aimed at a box's edges escaped it (BvhTraversal tests). */
 #pragma OPENCL FP_CONTRACT OFF
-  const Vec3 a = v3_sub(v3_load_global(tri->v0), ray->origin);
-  const Vec3 b = v3_sub(v3_load_global(tri->v1), ray->origin);
-  const Vec3 c = v3_sub(v3_load_global(tri->v2), ray->origin);
+  const Vec3 a = v3_sub(v0, ray->origin);
+  const Vec3 b = v3_sub(v1, ray->origin);
+  const Vec3 c = v3_sub(v2, ray->origin);
   const real az = v3_component(a, ray->kz), bz = v3_component(b, ray->kz), cz = v3_component(c, ray->kz);
   const real ax = v3_component(a, ray->kx) - ray->sx * az, ay = v3_component(a, ray->ky) - ray->sy * az;
   const real bx = v3_component(b, ray->kx) - ray->sx * bz, by = v3_component(b, ray->ky) - ray->sy * bz;
@@ -87,13 +96,21 @@ CLPT_INLINE TriangleTest triangle_test(const ShearedRay* ray, __global const Gpu
   return r;
 }
 
-/* Distance to the triangle along the ray when it is hit at t in (0, t_max), else CLPT_NO_HIT. */
-CLPT_INLINE real triangle_intersect(const ShearedRay* ray, __global const GpuTriangle* tri, real t_max) {
-  const TriangleTest r = triangle_test(ray, tri);
+CLPT_INLINE TriangleTest triangle_test(const ShearedRay* ray, __global const GpuTriangle* tri) {
+  return triangle_test_of(ray, v3_load_global(tri->v0), v3_load_global(tri->v1), v3_load_global(tri->v2));
+}
+
+/* Distance along the ray when test r is a hit at t in (0, t_max), else CLPT_NO_HIT. */
+CLPT_INLINE real triangle_test_distance(TriangleTest r, real t_max) {
   const bool mixed = (r.u < (real)0 || r.v < (real)0 || r.w < (real)0) && (r.u > (real)0 || r.v > (real)0 || r.w > (real)0);
   const real t = r.t_scaled / r.det;
   const bool hit = !mixed && r.det != (real)0 && t > (real)0 && t < t_max;
   return hit ? t : CLPT_NO_HIT;
+}
+
+/* Distance to the triangle along the ray when it is hit at t in (0, t_max), else CLPT_NO_HIT. */
+CLPT_INLINE real triangle_intersect(const ShearedRay* ray, __global const GpuTriangle* tri, real t_max) {
+  return triangle_test_distance(triangle_test(ray, tri), t_max);
 }
 
 /* A triangle hit as shading sees it. */
@@ -112,7 +129,8 @@ typedef struct TriangleSurface {
  * normal; the shading normal is left the geometric one. Hits (triangle_surface) and light
  * samples (light.cl) both take their points from here, so both offset rays alike. */
 CLPT_INLINE TriangleSurface triangle_point(__global const GpuTriangle* tri, real b0, real b1, real b2) {
-  const Vec3 p0 = v3_load_global(tri->v0), p1 = v3_load_global(tri->v1), p2 = v3_load_global(tri->v2);
+  /* v3_load_sphere_field (maths.cl): y read apart where this runs vectorised (the triangle loop). */
+  const Vec3 p0 = v3_load_sphere_field(tri->v0), p1 = v3_load_sphere_field(tri->v1), p2 = v3_load_sphere_field(tri->v2);
   TriangleSurface s;
   s.point = v3_add(v3_add(v3_scale(p0, b0), v3_scale(p1, b1)), v3_scale(p2, b2));
   /* gamma(7) = 7 u / (1 - 7 u), u the unit roundoff of `real`; times the sum of |b_i p_i|. */
@@ -139,9 +157,9 @@ CLPT_INLINE TriangleSurface triangle_surface(Vec3 o, Vec3 d, __global const GpuT
   const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
   const real b0 = r.u * inv, b1 = r.v * inv, b2 = r.w * inv;
   TriangleSurface s = triangle_point(tri, b0, b1, b2);
-  const Vec3 interpolated = v3_add(v3_add(v3_scale(v3_load_global(shading->normal0), b0),
-                                          v3_scale(v3_load_global(shading->normal1), b1)),
-                                   v3_scale(v3_load_global(shading->normal2), b2));
+  const Vec3 interpolated = v3_add(v3_add(v3_scale(v3_load_sphere_field(shading->normal0), b0),
+                                          v3_scale(v3_load_sphere_field(shading->normal1), b1)),
+                                   v3_scale(v3_load_sphere_field(shading->normal2), b2));
   const real length2 = v3_dot(interpolated, interpolated);
   const bool use_interpolated = shading->has_normals != 0u && length2 > (real)1e-12f;
   s.shading = v3_select(use_interpolated, v3_scale(interpolated, (real)1 / clpt_sqrt(use_interpolated ? length2 : (real)1)),

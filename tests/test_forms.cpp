@@ -9,7 +9,9 @@
 
 #include "device_test_util.h"
 #include "mesh_test_util.h"
+#include "kernels/kernel_options.h"
 #include "render_test_util.h"
+#include "scene/scene_loader.h"
 
 namespace clpt::test {
 namespace {
@@ -234,6 +236,46 @@ TEST(FormsAgreeOnAreaLights, MegakernelLoopsWavefrontAndGenericAgree) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BookScenes, FormsAgree, ::testing::Values("diffuse", "specular", "glass"));
+
+}  // namespace
+}  // namespace clpt::test
+
+namespace clpt::test {
+namespace {
+
+// A small mesh's triangles in the unrolled loop (CLPT_TRIANGLE_COUNT, kernels/triangle_loop.cl:
+// CPUs with their 16 lanes set) against the hierarchy's traversal (rolled scene loops, the GPUs'
+// shape, or the generic kernel): the same closest hits and shadow rays, so the same image. The
+// Cornell box (32 triangles, a triangle light) and the book's room with a mirror box of 12
+// triangles beside its 8 spheres (both loops in one kernel).
+TEST(TriangleLoop, EqualsTheHierarchy) {
+  KernelFeatures f = features_for_scene(load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/cornell-box.toml"));
+  f.cpu_vector_lanes = 16;
+  f.unroll_scene_loops = true;
+  EXPECT_TRUE(f.triangles_in_loop());
+  EXPECT_NE(kernel_build_options(f).find("-DCLPT_TRIANGLE_COUNT=32"), std::string::npos);
+  EXPECT_NE(kernel_build_options(f).find("-DCLPT_HAS_BVH=0"), std::string::npos);
+  f.unroll_scene_loops = false;
+  EXPECT_FALSE(f.triangles_in_loop());
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_TRIANGLE_COUNT"), std::string::npos);
+  EXPECT_NE(kernel_build_options(f).find("-DCLPT_HAS_BVH=1"), std::string::npos);
+
+  Variant loop, tree;
+  loop.estimator = tree.estimator = "nee";
+  loop.loop = tree.loop = MegakernelLoop::Lockstep;
+  tree.scene_loops = SceneLoops::Rolled;
+  expect_same_image(render_variant("cornell-box", loop), render_variant("cornell-box", tree));
+
+  const auto room = [](bool generic) {
+    return render_book_variant("diffuse", 77, [&](RenderRequest& request) {
+      request.generic_kernel = generic;
+      request.scene.settings.estimator = "nee";
+      request.scene.meshes.push_back(closed_box({3.2, 0.0, -1.0}, {4.2, 1.5, 0.0}, mirror(0.9)));
+      request.scene.settings.spp = 32;
+    });
+  };
+  expect_same_image(room(false), room(true));
+}
 
 }  // namespace
 }  // namespace clpt::test

@@ -63,6 +63,11 @@ for scene in diffuse specular glass "$work/hierarchy"; do
     done
   done
 done
+# The Cornell box (32 triangles and a triangle light): its triangles in the unrolled loop
+# (kernels/triangle_loop.cl), with SLP held off for its kernels, the whole lockstep body vectorises.
+if [[ $slow_gathers == 0 ]]; then
+  check_vectorised cornell-box.nee.robust scenes/cornell-box.toml --estimator nee
+fi
 # Russian roulette with the book estimator (its own uniform, u3, and no paired scattering draws:
 # path.cl), which ran scalar until 2026-12-03 (docs/performance.md, "What limits the speed").
 if [[ $slow_gathers == 0 ]]; then

@@ -59,11 +59,13 @@ Buffer::Buffer(DeviceContext& ctx, size_t bytes, cl_mem_flags flags, const std::
                        : CL_CREATE(ctx.where(), clCreateBuffer, ctx.context(), flags, bytes, nullptr));
 }
 
-Kernel::Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes)
+Kernel::Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes,
+               bool pocl_slp)
     : kernel_(CL_CREATE(where, clCreateKernel, program, name.c_str())),
       name_(name),
       where_(where),
-      pocl_vector_lanes_(pocl_vector_lanes) {}
+      pocl_vector_lanes_(pocl_vector_lanes),
+      pocl_slp_(pocl_slp) {}
 
 Kernel::Resources Kernel::resources(cl_device_id device) const {
   Resources r;
@@ -158,7 +160,10 @@ cl_event DeviceContext::enqueue(const Kernel& kernel, size_t global_size, size_t
   if (global_size == 0) return nullptr;
   if (local_size) global_size = (global_size + local_size - 1) / local_size * local_size;
   // PoCL compiles the kernel's work-group function at its first launch, with the width set now.
-  if (device_.is_pocl_cpu()) set_pocl_vectoriser_lanes(kernel.pocl_vector_lanes());
+  if (device_.is_pocl_cpu()) {
+    set_pocl_vectoriser_lanes(kernel.pocl_vector_lanes());
+    set_pocl_slp(kernel.pocl_slp());
+  }
   cl_event event = nullptr;
   CL_CALL(where_ + " (" + label + ")",
           clEnqueueNDRangeKernel(queue_.get(), kernel.get(), 1, nullptr, &global_size,

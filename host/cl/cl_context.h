@@ -75,7 +75,9 @@ class Kernel {
   // PoCL compiles at the first launch (cl/pocl_vectoriser.h). The program's build options must
   // carry it: renderers take their kernels from Renderer::entry_point, which passes the lanes of
   // the features the program was built with (kernel_options.cpp puts them in its options).
-  Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes = 0);
+  // `pocl_slp`: whether LLVM's SLP vectoriser runs when PoCL compiles it (set_pocl_slp), likewise.
+  Kernel(cl_program program, const std::string& name, const std::string& where, uint32_t pocl_vector_lanes = 0,
+         bool pocl_slp = true);
   template <typename T>
   void set_arg(cl_uint index, const T& value) {
     set_arg_bytes(index, sizeof(T), &value);
@@ -97,6 +99,7 @@ class Kernel {
   // The names of every kernel of a built program, in the driver's order.
   static std::vector<std::string> names_in(const ProgramHandle& program, const std::string& where);
   uint32_t pocl_vector_lanes() const { return pocl_vector_lanes_; }
+  bool pocl_slp() const { return pocl_slp_; }
 
  private:
   void set_arg_bytes(cl_uint index, size_t size, const void* value);
@@ -104,6 +107,7 @@ class Kernel {
   std::string name_;
   std::string where_;
   uint32_t pocl_vector_lanes_ = 0;
+  bool pocl_slp_ = true;
 };
 
 // One device with its context and in-order, profiling-enabled queue.

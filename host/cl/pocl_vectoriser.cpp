@@ -23,6 +23,7 @@ struct Vectoriser {
   std::mutex mutex;
   ParseOptions parse = nullptr;  // found once, then kept: PoCL stays loaded until exit
   uint32_t lanes = 0;            // the width last set; 0: never set, LLVM's default
+  bool slp_on = true;            // SLP as last set; LLVM's default until set
 };
 
 Vectoriser& vectoriser() {
@@ -105,6 +106,20 @@ void set_pocl_vectoriser_lanes(uint32_t lanes) {
   const char* argv[] = {"clpt", option.c_str()};
   parse(2, argv, "");
   v.lanes = lanes;
+}
+
+void set_pocl_slp(bool on) {
+  Vectoriser& v = vectoriser();
+  std::lock_guard<std::mutex> lock(v.mutex);
+  if (on == v.slp_on) return;
+  std::string why;
+  const ParseOptions parse = find_parser(v, &why);
+  if (!parse) throw std::logic_error(std::string("set_pocl_slp(") + (on ? "true" : "false") + "): " + why);
+  // LLVM 15's default threshold is 0 (vectorise when the cost model gains anything).
+  const char* option = on ? "-slp-threshold=0" : "-slp-threshold=1000000";
+  const char* argv[] = {"clpt", option};
+  parse(2, argv, "");
+  v.slp_on = on;
 }
 
 }  // namespace clpt

@@ -33,4 +33,15 @@ bool pocl_vectoriser_reachable(std::string* why_not = nullptr);
 // the plan must not ask for a width it cannot have (kernel_options.cpp checks first).
 void set_pocl_vectoriser_lanes(uint32_t lanes);
 
+// Whether LLVM's SLP vectoriser may pair values in the kernels PoCL compiles from now on in this
+// process (true, LLVM's default), or is held off by an unreachable threshold (`-slp-threshold`).
+// PoCL runs SLP on each work-item's code before it builds the work-item loops, and a pair it
+// forms (<2 x float>) stops the loop vectoriser for the whole region (docs/design.md). The
+// triangle loop's kernels (CLPT_TRIANGLE_COUNT, kernel_options.cpp) turn it off: their
+// triangle shading and light code, in one region with everything else, invites pairs at a dozen
+// places. Same contract as the lanes: set before every launch on PoCL's CPU device, from the
+// kernel's own value, which its build options carry. A no-op when unchanged; throws
+// std::logic_error when turning it off is asked for and the vectoriser is not reachable.
+void set_pocl_slp(bool on);
+
 }  // namespace clpt

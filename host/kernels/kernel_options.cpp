@@ -237,6 +237,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     uses(m.material);
     f.triangles |= !m.triangles.empty();
   }
+  f.loop_triangles = loop_triangle_count(scene);
   return f;
 }
 
@@ -263,7 +264,7 @@ bool reads_spheres_by_select(const KernelFeatures& features) {
 bool hit_carries_sphere_centre(const KernelFeatures& features) {
   const Intersection intersection = features.intersection.value_or(default_intersection(features.precision));
   return features.lockstep_group > 0 && features.unroll_scene_loops && !features.has_hierarchy() &&
-         !reads_spheres_by_select(features) && intersection != Intersection::Centre;
+         !features.triangles && !reads_spheres_by_select(features) && intersection != Intersection::Centre;
 }
 
 bool picks_material_by_select(const KernelFeatures& features) {
@@ -315,6 +316,8 @@ std::string kernel_build_options(const KernelFeatures& features) {
   // A specialised kernel fixes its sphere loop, at 0 when the spheres are in the hierarchy or
   // there are none (then no sphere loop is compiled at all).
   if (!features.generic) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
+  // Named only when on: the kernels of scenes without a small mesh keep their options.
+  if (features.triangles_in_loop()) o << " -DCLPT_TRIANGLE_COUNT=" << features.loop_triangles;
   if (!features.generic && features.light_count >= 0) o << " -DCLPT_LIGHT_COUNT=" << features.light_count;
   if (features.lockstep_group > 0) o << " -DCLPT_LOCKSTEP_GROUP=" << features.lockstep_group;
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
@@ -442,6 +445,17 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << (features.generic ? "compiled (generic kernel)"
         : features.triangles ? "compiled (the scene has meshes)" : "left out (no mesh in the scene)")
     << "\n";
+  o << "  triangle loop: "
+    << (features.generic ? std::string("left out (generic kernel: the hierarchy)")
+        : !features.triangles ? std::string("left out (no mesh in the scene)")
+        : features.triangles_in_loop()
+            ? "fixed at the scene's " + std::to_string(features.loop_triangles) + " triangles, unrolled (at most " +
+                  std::to_string(kMaxLoopTriangles) + "; measured 3x the hierarchy on the Cornell box's 32)"
+        : features.spheres_in_bvh ? std::string("left out (the spheres are in the hierarchy)")
+        : features.loop_triangles == 0
+            ? "left out (more than " + std::to_string(kMaxLoopTriangles) + " triangles: the hierarchy)"
+            : std::string("left out (rolled scene loops, or not PoCL's CPU device with its 16 lanes set: the hierarchy)"))
+    << "\n";
   o << "  hierarchy traversal: "
     << (features.generic ? "compiled (generic kernel; used when the scene has a hierarchy)"
         : features.has_hierarchy()
@@ -450,7 +464,8 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                    : features.triangles                          ? "triangles"
                                                                  : "spheres") +
                   " in the hierarchy; closest hit and any-hit shadow rays)"
-            : std::string("left out (no triangles, and few enough spheres for the loop)"))
+            : std::string(features.triangles ? "left out (the triangles are in the unrolled loop, and few enough spheres for theirs)"
+                                             : "left out (no triangles, and few enough spheres for the loop)"))
     << "\n";
   o << "  triangle lights: "
     << (features.generic ? "compiled (generic kernel; the pick is uniform unless the scene has emitting triangles)"

@@ -156,8 +156,20 @@ struct KernelFeatures {
   // lights by power (nee and a scene with an emitting mesh, or generic).
   bool triangle_lights = true;
   bool spheres_in_bvh = false;  // the spheres are hierarchy primitives (no sphere loop)
-  // CLPT_HAS_BVH: traversal compiled (triangles, spheres_in_bvh or generic); see has_hierarchy().
-  bool has_hierarchy() const { return generic || triangles || spheres_in_bvh; }
+  // The scene's triangles when they are few enough for an unrolled loop (loop_triangle_count,
+  // scene/loop_spheres.h), else 0; used only where the scene loops are unrolled (triangles_in_loop).
+  int loop_triangles = 0;
+  // CLPT_TRIANGLE_COUNT: the triangles tested in the unrolled loop, no hierarchy: a specialised
+  // kernel with unrolled scene loops on PoCL's CPU device with its vectoriser reachable (the 16
+  // lanes set, cpu_vector_lanes), whose SLP vectoriser is then held off for it (cl/pocl_vectoriser.h:
+  // with it the loop's region runs scalar, 4x slower than the hierarchy). GPUs, and CPUs where
+  // PoCL's LLVM cannot be reached, keep the per-path traversal.
+  bool triangles_in_loop() const {
+    return !generic && triangles && loop_triangles > 0 && !spheres_in_bvh && unroll_scene_loops &&
+           cpu_vector_lanes > 0;
+  }
+  // CLPT_HAS_BVH: traversal compiled (triangles not in the loop, spheres_in_bvh or generic).
+  bool has_hierarchy() const { return generic || (triangles && !triangles_in_loop()) || spheres_in_bvh; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
   int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0: nee's sphere-light loop fixed likewise; -1: run time
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:

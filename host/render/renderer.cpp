@@ -21,11 +21,12 @@ ProgramHandle Renderer::build(DeviceContext& ctx, const std::string& entry_file,
       ctx.build_program(assemble_kernel_source(entry_file), kernel_build_options(features), entry_file);
   build_seconds_ = seconds_since(start);
   cpu_vector_lanes_ = features.cpu_vector_lanes;
+  pocl_slp_ = !features.triangles_in_loop();
   return program;
 }
 
 Kernel Renderer::entry_point(const DeviceContext& ctx, const ProgramHandle& program, const char* name) const {
-  return Kernel(program.get(), name, ctx.where(), cpu_vector_lanes_);
+  return Kernel(program.get(), name, ctx.where(), cpu_vector_lanes_, pocl_slp_);
 }
 
 void Renderer::prepare_aovs(const DeviceContext& ctx, const ProgramHandle& program, const KernelFeatures& features) {

@@ -85,6 +85,7 @@ class Renderer {
   Buffer aov_pass_;
   std::vector<float> aov_sums_;
   uint32_t cpu_vector_lanes_ = 0;  // of the features of the last build
+  bool pocl_slp_ = true;           // likewise: SLP off for the triangle loop's kernels (cl/pocl_vectoriser.h)
   Buffer slots_;
 };
 

@@ -24,4 +24,11 @@ std::vector<bool> loop_spheres(const Scene& scene) {
   return in_loop;
 }
 
+int loop_triangle_count(const Scene& scene) {
+  if (spheres_in_hierarchy(scene)) return 0;
+  size_t n = 0;
+  for (const TriangleMesh& m : scene.meshes) n += m.triangles.size();
+  return n <= static_cast<size_t>(kMaxLoopTriangles) ? static_cast<int>(n) : 0;
+}
+
 }  // namespace clpt

@@ -22,4 +22,13 @@ bool spheres_in_hierarchy(const Scene& scene);
 // box, so each ray would visit the wall's leaf on any path through the tree.
 std::vector<bool> loop_spheres(const Scene& scene);
 
+// A small mesh is tested the same way: a scene of at most this many triangles, whose spheres are
+// all in the loop, has its triangles tested in an unrolled loop after the spheres, every path's
+// against every triangle, and compiles no hierarchy traversal (kernels/triangle_loop.cl; where the
+// scene loops are unrolled, i.e. on CPUs: kernel_options.cpp). The threshold is measured with
+// `clpt bench` (docs/performance.md, "Traversal").
+constexpr int kMaxLoopTriangles = 64;
+// The scene's triangle count when its triangles are few enough for the loop, else 0.
+int loop_triangle_count(const Scene& scene);
+
 }  // namespace clpt
