@@ -2,7 +2,7 @@
  * PoCL, Oclgrind and every GPU driver) and what a hit's material takes from them.
  *
  * The texturing buffer (types.h, GpuTexturing) holds the texture table, the textured materials,
- * each triangle's texture coordinates and tangents, and the texels: 8-bit, half (vload_half) or
+ * each triangle's texture coordinates and tangents, and the texels: 8-bit, half (decoded from its bits) or
  * float, 1 to 4 channels, rows from the image's top. A lookup at mesh coordinates (u, v) (OBJ's
  * convention, (0, 0) at the image's bottom-left) applies the texture's uv transform, reduces the
  * coordinates by the wrap mode (repeat: mod 1, mirror: mod 2, clamp: to [-1, 2]), reads the texel
@@ -130,6 +130,19 @@ __constant float kSrgbToLinear[256] = {
 };
 
 
+/* An IEEE 754 binary16 value from its bits, by integer operations and selects: vload_half is not
+ * declared by every OpenCL implementation's headers (libclc for nvptx64 lacks it), and this form
+ * vectorises on PoCL. Subnormals are mant x 2^-24; exponent 31 is infinity or NaN. */
+CLPT_INLINE float half_bits_to_float(uint h) {
+  const uint sign = (h & 0x8000u) << 16;
+  const uint exponent = (h >> 10) & 0x1fu;
+  const uint mantissa = h & 0x3ffu;
+  const uint subnormal = as_uint((float)mantissa * 5.9604644775390625e-8f) | sign;
+  const uint normal = sign | ((exponent + 112u) << 23) | (mantissa << 13);
+  const uint special = sign | 0x7f800000u | (mantissa << 13);
+  return as_float(exponent == 0u ? subnormal : (exponent == 31u ? special : normal));
+}
+
 /* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). */
 CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint at) {
   float v = 0.0f;
@@ -138,9 +151,9 @@ CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint 
 #endif
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_HALF)
 #if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_HALF)
-  v = vload_half(at, (__global const half*)texels);
+  v = half_bits_to_float(((__global const ushort*)texels)[at]);
 #else
-  v = (storage & 1u) != 0u ? vload_half(at, (__global const half*)texels) : v;
+  v = (storage & 1u) != 0u ? half_bits_to_float(((__global const ushort*)texels)[at]) : v;
 #endif
 #endif
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_FLOAT)

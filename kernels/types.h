@@ -120,7 +120,7 @@ typedef struct GpuTriangleShading {
  * texels. Scenes without textures get a placeholder that no kernel reads. */
 #define CLPT_TEXTURE_NONE 0xffffffffu
 #define CLPT_TEXEL_U8 0u    /* one byte per channel, value / 255 */
-#define CLPT_TEXEL_HALF 1u  /* binary16 per channel (vload_half) */
+#define CLPT_TEXEL_HALF 1u  /* binary16 per channel (texture.cl, half_bits_to_float) */
 #define CLPT_TEXEL_FLOAT 2u /* float per channel */
 #define CLPT_WRAP_REPEAT 0u
 #define CLPT_WRAP_CLAMP 1u
