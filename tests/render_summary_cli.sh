@@ -9,7 +9,8 @@
 #    build + first launch + passes + output writing <= wall, in the summary and in the EXR
 #    (clpt:elapsed_s, taken before the EXR itself is written);
 #  * the progress line's samples/s is the passes' rate;
-#  * a resumed render counts its own paths only and shows the checkpoint's load.
+#  * a resumed render counts its own paths only and shows the checkpoint's load;
+#  * a scene with images (textures, environment) shows their load apart from the scene's.
 # No figure is compared with a time limit: the checks hold on any machine at any load.
 #   render_summary_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
@@ -46,10 +47,14 @@ if passes > 0:
     expect(abs(number("clpt:segments_per_s") - segments / passes) <= 1e-6 * segments / passes,
            f"clpt:segments_per_s {meta.get('clpt:segments_per_s')} is not clpt:segments / clpt:passes_s")
 parts = ["scene_load_s", "discovery_s", "convert_s", "kernel_build_s", "first_launch_s", "passes_s", "output_s"]
-if resumed:
+if resumed == "resumed":
     parts.append("resume_load_s")
 else:
     expect("clpt:resume_load_s" not in meta, "clpt:resume_load_s without --resume")
+if resumed == "images":
+    parts.append("image_load_s")
+else:
+    expect("clpt:image_load_s" not in meta, "clpt:image_load_s for a scene without images")
 values = {p: number("clpt:" + p) for p in parts}
 expect(all(v >= 0 for v in values.values()), f"a negative part: {values}")
 expect(sum(values.values()) <= number("clpt:elapsed_s"),
@@ -71,7 +76,8 @@ expect(w is not None, "no wall line")
 if w:
     named = {name.strip(): float(value) for name, value in re.findall(r"(?:^|\+ )([a-z ]+?) (-?[0-9.]+) s", w.group(2))}
     want = ["scene load", "device discovery", "conversion and hierarchy", "kernel build", "first launch", "passes",
-            "output writing", "other"] + (["checkpoint load"] if resumed else [])
+            "output writing", "other"] + (["checkpoint load"] if resumed == "resumed" else []) + \
+           (["image load"] if resumed == "images" else [])
     expect(sorted(named) == sorted(want), f"the wall line's parts are {sorted(named)}, expected {sorted(want)}")
     wall = float(w.group(1))
     expect(all(v >= 0 for k, v in named.items()), f"a negative part on the wall line: {named}")
@@ -109,7 +115,11 @@ grep -q "kernel build [0-9.]* s (clpt cache hit)" b.txt || fail "the build is no
 "$clpt" render "$scene" "${size[@]}" --spp 16 --resume c.ckpt -o c.exr >c.txt 2>c.err || fail "resumed render exited $?: $(cat c.err)"
 check c.txt c.exr $((32 * 24 * 8)) resumed
 
-# 4. The wavefront (its stage times are the passes', the first launch's left out).
+# 4. A scene with images (textures): their reading and decoding is a part of its own.
+"$clpt" render "$src/scenes/textured-room.toml" "${size[@]}" --spp 8 -o t.exr >t.txt 2>t.err || fail "textured render exited $?: $(cat t.err)"
+check t.txt t.exr $((32 * 24 * 8)) images
+
+# 5. The wavefront (its stage times are the passes', the first launch's left out).
 "$clpt" render "$scene" "${size[@]}" --spp 8 --form wavefront -o w.exr >w.txt 2>w.err || fail "wavefront exited $?: $(cat w.err)"
 check w.txt w.exr $((32 * 24 * 8))
 python3 - w.txt <<'EOF' || fail "wavefront: the stages' launches are not the passes' (above)"

@@ -16,6 +16,7 @@
 #include "render/render_session.h"
 #include "scene/environment.h"
 #include "scene/precision_range.h"
+#include "scene/scene_image.h"
 #include "scene/scene_loader.h"
 #include "tools/vector_width.h"
 #include "util/atomic_file.h"
@@ -133,6 +134,7 @@ void add_times(RenderFileInfo& info, const RenderReport& report, const RenderCom
   info.paths_per_s = double(report.paths) / std::max(1e-9, s.passes);
   info.segments_per_s = double(report.segments) / std::max(1e-9, s.passes);
   info.scene_load_s = s.scene_load;
+  if (s.image_load > 0) info.image_load_s = s.image_load;
   if (s.resume_load > 0) info.resume_load_s = s.resume_load;
   info.discovery_s = s.discovery;
   info.convert_s = s.convert;
@@ -254,11 +256,13 @@ int run(RenderOptions o) {
   const Precision precision = *parse_precision(o.precision);  // CLI11 checked the word
   if (writes && !o.checkpoint.empty()) check_output_file("--checkpoint", o.checkpoint);
   const Clock::time_point load_start = Clock::now();
+  const double images_before = scene_image_seconds();
   Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
   apply_environment_overrides(scene, o.environment);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
-  times.scene_load = seconds_since(load_start);
+  times.image_load = scene_image_seconds() - images_before;
+  times.scene_load = seconds_since(load_start) - times.image_load;
 
   RenderRequest request;
   request.device = o.device;

@@ -46,6 +46,7 @@ RenderTimeSplit render_time_split(const RenderReport& r, const RenderCommandTime
   RenderTimeSplit s;
   s.wall = seconds_since(t.start);
   s.scene_load = t.scene_load;
+  s.image_load = t.image_load;
   s.resume_load = t.resume_load;
   s.discovery = r.discovery_seconds;
   s.convert = r.convert_seconds;
@@ -53,7 +54,7 @@ RenderTimeSplit render_time_split(const RenderReport& r, const RenderCommandTime
   s.first_launch = r.first_launch_seconds;
   s.passes = r.pass_seconds;
   s.output = t.output;
-  s.other = s.wall - (s.scene_load + s.resume_load + s.discovery + s.convert + s.kernel_build + s.first_launch +
+  s.other = s.wall - (s.scene_load + s.image_load + s.resume_load + s.discovery + s.convert + s.kernel_build + s.first_launch +
                       s.passes + s.output);
   return s;
 }
@@ -98,12 +99,14 @@ void print_render_summary(const Scene& scene, const RenderReport& r) {
 
 void print_render_times(const RenderReport& r, const RenderCommandTimes& t) {
   const RenderTimeSplit s = render_time_split(r, t);
+  char image_text[48] = "";
+  if (s.image_load > 0) std::snprintf(image_text, sizeof image_text, " + image load %.3f s", s.image_load);
   char resume_text[48] = "";
   if (s.resume_load > 0) std::snprintf(resume_text, sizeof resume_text, " + checkpoint load %.3f s", s.resume_load);
-  std::printf("  wall %.3f s = scene load %.3f s%s + device discovery %.3f s + conversion and hierarchy %.3f s + "
+  std::printf("  wall %.3f s = scene load %.3f s%s%s + device discovery %.3f s + conversion and hierarchy %.3f s + "
               "kernel build %.3f s (%s) + first launch %.3f s + passes %.3f s + output writing %.3f s + other %.3f s "
               "(contexts, uploads, work between passes)\n",
-              s.wall, s.scene_load, resume_text, s.discovery, s.convert, s.kernel_build, kernel_build_source(r),
+              s.wall, s.scene_load, image_text, resume_text, s.discovery, s.convert, s.kernel_build, kernel_build_source(r),
               s.first_launch, s.passes, s.output, s.other);
 }
 

@@ -1,7 +1,7 @@
 // What `clpt render` reports when it is done: the render (size, samples, form, device), the
 // passes' rates over the passes' own time (their launches and the waits for them, as `clpt bench`
 // times a pass), and where the whole wall time went, each part measured on its own: scene load,
-// device discovery, the conversion and hierarchy, kernel build, first launch, passes, output
+// image load (textures, environment), device discovery, the conversion and hierarchy, kernel build, first launch, passes, output
 // writing, and the rest.
 // The EXR records the same split (clpt:*_s keys, io/render_file.h; docs/render-summary.md).
 #pragma once
@@ -16,6 +16,8 @@ namespace clpt {
 struct RenderCommandTimes {
   Clock::time_point start = Clock::now();  // the command's start
   double scene_load = 0;   // the scene file and its mesh files read and checked, overrides applied
+                           // (without image_load)
+  double image_load = 0;   // the images the scene names (textures, environment) read and decoded
   double resume_load = 0;  // --resume: the checkpoint read and checked
   double output = 0;       // checkpoints and outputs written so far
 };
@@ -23,7 +25,7 @@ struct RenderCommandTimes {
 // The wall time from `times.start` until now, split into parts that do not overlap; `other` is
 // the rest (the devices' contexts, scene uploads, the work between passes, start-up).
 struct RenderTimeSplit {
-  double wall = 0, scene_load = 0, resume_load = 0, discovery = 0, convert = 0, kernel_build = 0,
+  double wall = 0, scene_load = 0, image_load = 0, resume_load = 0, discovery = 0, convert = 0, kernel_build = 0,
          first_launch = 0, passes = 0, output = 0, other = 0;
 };
 RenderTimeSplit render_time_split(const RenderReport& report, const RenderCommandTimes& times);

@@ -38,6 +38,7 @@ constexpr const char* kPassesS = "clpt:passes_s";
 constexpr const char* kPathsPerS = "clpt:paths_per_s";
 constexpr const char* kSegmentsPerS = "clpt:segments_per_s";
 constexpr const char* kSceneLoadS = "clpt:scene_load_s";
+constexpr const char* kImageLoadS = "clpt:image_load_s";
 constexpr const char* kResumeLoadS = "clpt:resume_load_s";
 constexpr const char* kDiscoveryS = "clpt:discovery_s";
 constexpr const char* kConvertS = "clpt:convert_s";
@@ -171,6 +172,7 @@ ImageMetadata render_metadata(const RenderFileInfo& info) {
   put_real(kPathsPerS, info.paths_per_s);
   put_real(kSegmentsPerS, info.segments_per_s);
   put_real(kSceneLoadS, info.scene_load_s);
+  put_real(kImageLoadS, info.image_load_s);
   put_real(kResumeLoadS, info.resume_load_s);
   put_real(kDiscoveryS, info.discovery_s);
   put_real(kConvertS, info.convert_s);
@@ -210,6 +212,7 @@ RenderFileInfo parse_render_metadata(const ImageMetadata& m) {
   info.paths_per_s = real(m, kPathsPerS);
   info.segments_per_s = real(m, kSegmentsPerS);
   info.scene_load_s = real(m, kSceneLoadS);
+  info.image_load_s = real(m, kImageLoadS);
   info.resume_load_s = real(m, kResumeLoadS);
   info.discovery_s = real(m, kDiscoveryS);
   info.convert_s = real(m, kConvertS);

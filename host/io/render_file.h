@@ -56,6 +56,8 @@ struct RenderFileInfo {
   std::optional<double> passes_s;           // clpt:passes_s, the passes: their launches and the waits for them
   std::optional<double> paths_per_s;        // clpt:paths_per_s, paths / passes_s
   std::optional<double> segments_per_s;     // clpt:segments_per_s, segments / passes_s
+  std::optional<double> image_load_s;       // clpt:image_load_s, the images the scene names read and
+                                            // decoded (textures, environment); unset: none
   std::optional<double> scene_load_s;       // clpt:scene_load_s, the scene file and its mesh files
   std::optional<double> resume_load_s;      // clpt:resume_load_s, the --resume checkpoint (only then)
   std::optional<double> discovery_s;        // clpt:discovery_s, OpenCL devices listed and selected, the plan made

@@ -32,4 +32,8 @@ void set_scene_image_reader(SceneImageReader reader);
 // reader is installed (a build without OpenImageIO), or the reader's error.
 SceneImagePixels read_scene_image(const std::string& path, const std::string& what);
 
+// Wall seconds this process has spent in read_scene_image so far (the render summary's "image
+// load", apart from the rest of the scene's loading).
+double scene_image_seconds();
+
 }  // namespace clpt
