@@ -337,9 +337,10 @@ CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Ve
  * normal: no light leaks through the surface (docs/textures.md). */
 CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, Vec3 d, SurfacePoint* s, SurfaceMaterial* m) {
   __global const uchar* texturing = scene->texturing;
-  __global const GpuTriangleTexturing* r = triangle_texturing(texturing, triangle < 0 ? 0u : (uint)triangle);
-  if (triangle < 0 || r->material == CLPT_TEXTURE_NONE) return;
-  __global const GpuMaterialTextures* mt = material_textures(texturing, r->material);
+  const uint material = triangle_texture_material(texturing, triangle);
+  if (material == CLPT_TEXTURE_NONE) return;
+  __global const GpuTriangleTexturing* r = triangle_texturing(texturing, (uint)triangle);
+  __global const GpuMaterialTextures* mt = material_textures(texturing, material);
   const real b1 = s->triangle.b1, b2 = s->triangle.b2;
   float u, v;
   triangle_uv(r, (float)((real)1 - b1 - b2), (float)b1, (float)b2, &u, &v);

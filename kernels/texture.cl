@@ -239,6 +239,17 @@ CLPT_INLINE __global const GpuTriangleTexturing* triangle_texturing(__global con
   return (__global const GpuTriangleTexturing*)(texturing + header->triangles) + triangle;
 }
 
+/* A triangle's textured-material index (into the GpuMaterialTextures section), or
+ * CLPT_TEXTURE_NONE: for an untextured triangle, for no triangle (triangle < 0), and for every
+ * triangle when the buffer holds no texturing at all (the zeroed header of a scene without
+ * textures: its triangles section is at offset 0, which a packed buffer never uses). Only the
+ * generic kernel meets that header; reading a record from it would run past its 16 bytes. */
+CLPT_INLINE uint triangle_texture_material(__global const uchar* texturing, int triangle) {
+  __global const GpuTexturing* header = (__global const GpuTexturing*)texturing;
+  if (triangle < 0 || header->triangles == 0u) return CLPT_TEXTURE_NONE;
+  return triangle_texturing(texturing, (uint)triangle)->material;
+}
+
 CLPT_INLINE __global const GpuMaterialTextures* material_textures(__global const uchar* texturing, uint material) {
   __global const GpuTexturing* header = (__global const GpuTexturing*)texturing;
   return (__global const GpuMaterialTextures*)(texturing + header->materials) + material;
@@ -253,11 +264,12 @@ CLPT_INLINE void triangle_uv(__global const GpuTriangleTexturing* r, float b0, f
 #if CLPT_HAS_EMISSION_TEXTURES
 /* A triangle's emission factor at barycentrics (b0, b1, b2): its emission texture's RGB, or 1. */
 CLPT_INLINE Vec3 triangle_emission_scale(__global const uchar* texturing, uint triangle, real b0, real b1, real b2) {
-  __global const GpuTriangleTexturing* r = triangle_texturing(texturing, triangle);
+  const uint material = triangle_texture_material(texturing, (int)triangle);
   Vec3 s = v3_splat((real)1);
-  if (r->material != CLPT_TEXTURE_NONE) {
-    const uint index = material_textures(texturing, r->material)->emission;
+  if (material != CLPT_TEXTURE_NONE) {
+    const uint index = material_textures(texturing, material)->emission;
     if (index != CLPT_TEXTURE_NONE) {
+      __global const GpuTriangleTexturing* r = triangle_texturing(texturing, triangle);
       float u, v;
       triangle_uv(r, (float)b0, (float)b1, (float)b2, &u, &v);
       const TexelRgba c = texture_lookup(texturing, index, u, v);

@@ -117,7 +117,8 @@ typedef struct GpuTriangleShading {
  * buffer, holds a GpuTexturing header at byte 0 and the sections it points to, each 16-byte
  * aligned: the texture table, the textured materials, one GpuTriangleTexturing per triangle
  * (same index as GpuTriangle), one GpuTriangleTangents per triangle (normal maps only) and the
- * texels. Scenes without textures get a placeholder that no kernel reads. */
+ * texels. Scenes without textures get a zeroed header (triangles 0: no texturing), which only
+ * the generic kernel reads (texture.cl, triangle_texture_material). */
 #define CLPT_TEXTURE_NONE 0xffffffffu
 #define CLPT_TEXEL_U8 0u    /* one byte per channel, value / 255 */
 #define CLPT_TEXEL_HALF 1u  /* binary16 per channel (texture.cl, half_bits_to_float) */

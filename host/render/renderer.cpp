@@ -68,7 +68,8 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   set.triangles = upload_entries(ctx, scene.triangles, "triangles");
   set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
   set.environment = upload_entries(ctx, scene.environment, "environment");
-  // The texturing bytes (device_textures.h), or a zeroed header no kernel reads.
+  // The texturing bytes (device_textures.h), or a zeroed header: no texturing (the generic kernel
+  // reads it; texture.cl, triangle_texture_material).
   std::vector<GpuTexturing> placeholder;
   set.texturing = scene.texturing.empty() ? upload_entries(ctx, placeholder, "texturing")
                                           : upload_entries(ctx, scene.texturing, "texturing");
