@@ -30,7 +30,8 @@ extra=("$@")
 
 clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_FUZZ_PACKAGES[@]}"
 # The harness needs neither OpenImageIO nor the test suite; only the fuzz target is built.
-cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
+mapfile -t launcher < <(clpt_compiler_launcher)
+cmake -S "$CLPT_ROOT" -B "$build" "${launcher[@]}" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release \
       -DCLPT_FUZZ=ON -DCLPT_BUILD_TESTS=OFF -DCLPT_WITH_OIIO=OFF >/dev/null
 cmake --build "$build" -j "$(nproc)" --target fuzz_scene_loader fuzz_mesh_file fuzz_assimp_mesh fuzz_gltf fuzz_options
 

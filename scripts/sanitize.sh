@@ -10,7 +10,8 @@ build=${CLPT_ASAN_BUILD:-$CLPT_ROOT/build-asan}
 clpt_install_missing "${CLPT_PACKAGES[@]}" "${CLPT_TEST_PACKAGES[@]}"
 # Debug (-O0 -g, assertions on): the sanitized build compiles about twice as fast as with -O2,
 # the reports carry line numbers, and the tests' time goes to PoCL building kernels, not host code.
-cmake -S "$CLPT_ROOT" -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCLPT_SANITIZE=ON \
+mapfile -t launcher < <(clpt_compiler_launcher)
+cmake -S "$CLPT_ROOT" -B "$build" "${launcher[@]}" -DCMAKE_BUILD_TYPE=Debug -DCLPT_SANITIZE=ON \
       -DCLPT_BUILD_TESTS=ON >/dev/null
 # Only what the unit and bad-input tests run: the sanitized build compiles slowly, and the stat
 # and cross-device executables are not run here. A new executable carrying the unit label must be
