@@ -10,9 +10,11 @@ clpt_build -DCLPT_BUILD_TESTS=ON
 "$CLPT_BUILD/clpt" devices
 cd "$CLPT_BUILD"
 # Without arguments: everything but the preset x extreme matrix (label `extremes`, a few
-# minutes; scripts/extremes.sh runs it, or scripts/test.sh -L extremes).
+# minutes; scripts/extremes.sh runs it, or scripts/test.sh -L extremes) and the Oclgrind kernel
+# variants that complete every pair of dimension values (label `oclgrind-pairs`, 20-40 minutes on
+# 2 cores: scripts/test.sh -L oclgrind-pairs; docs/oclgrind.md).
 if [[ $# -eq 0 ]]; then
-  ctest --output-on-failure -j "$(nproc)" --label-exclude extremes
+  ctest --output-on-failure -j "$(nproc)" --label-exclude 'extremes|oclgrind-pairs'
 else
   ctest --output-on-failure -j "$(nproc)" "$@"
 fi

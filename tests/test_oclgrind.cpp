@@ -139,64 +139,38 @@ RenderRequest variant_request(const KernelVariant& variant, const std::string& d
   return request;
 }
 
-// Same-seed bounds per variant, from the measured agreement of Oclgrind and PoCL (2026-12-04,
-// Oclgrind 21.10, PoCL 3.1, this tree, after the pbr, lights and camera dimensions joined the set;
-// measured with CLPT_OCLGRIND_SEED): at this test's seed and at seed 1 (the set of 2026-12-02 was
-// measured at seeds 1-6 too), the smallest fraction of the 495 values within 1e-4 relative and
-// the largest relative difference of a channel's image mean.
+// Same-seed bounds per variant, from the measured agreement of Oclgrind and PoCL (Oclgrind 21.10,
+// PoCL 3.1; measured with CLPT_OCLGRIND_SEED at this test's seed and others): the smallest
+// fraction of the 495 values within 1e-4 relative and the largest relative difference of a
+// channel's image mean.
 // Both devices run the variant's own form and loop; they differ in compilers (Oclgrind
 // interprets clang 14's IR, PoCL compiles with LLVM 15 for this CPU), so in contractions and in
 // what fast maths makes of powr/sin/cos, which can send a rare path elsewhere: only `fast`
-// variants ever differed; the Pbr ball's thin transmission under a directional light, fast, moves
-// a tenth of the values (every lobe's direction goes through native sin/cos), its means 3e-4. A
-// bound allows one pixel (3 values, 0.61%) more than the worst measured; the means' bound is 1e-6
-// where no path moved (at most 1.5e-8 measured; 1e-5 for the fast variants, up to 2.5e-6), 1e-2
-// where one did (a path carried elsewhere
-// moves an image this small by up to a few 1e-3). A variant not listed (a dimension added later)
-// gets the loosest bound of the table until it is measured.
+// variants ever differed; the Pbr ball's thin transmission under a punctual light, fast, moves
+// about a tenth of the values (every lobe's direction goes through native sin/cos), its means
+// 3e-4 to 6e-4. A bound allows one pixel (3 values, 0.61%) more than the worst measured; the
+// means' bound is 1e-6 where no path moved (at most 1.5e-8 measured; 1e-5 for the fast variants),
+// 1e-2 where one did (a path carried elsewhere moves an image this small by up to a few 1e-3).
+// The 12-dimension set's table (2026-12-04: 17 variants at two seeds, all 100% but the fast
+// transmission ones, 89.09% and 98.38% the worst) lost its names when the environment, textures
+// and first-hit layers joined the dimensions; a variant not listed gets the loosest bound of the
+// table until it is measured again (docs/oclgrind.md).
 struct SameSeedBound {
   double close_fraction;  // at least this fraction of values within 1e-4 relative
   double mean_relative;   // every channel's image mean within this, relative
 };
 const std::map<std::string, SameSeedBound>& same_seed_bounds() {
-  // measured: this seed (fraction, means); seed 1 (fraction, means)
+  // measured at this seed, 2026-12-06, Intel Xeon (skylake-avx512) VM: fraction, means
   static const std::map<std::string, SameSeedBound> bounds = {
-      // 100.00%, 9.3e-09; 100.00%, 5.4e-09
-      {"megakernel-path.robust.book.no-rr.specialised.unrolled.no-phong.no-glass.spheres.no-pbr.no-punctual.perspective", {0.9939, 1e-6}},
-      // 99.60%, 1.1e-07; 99.80%, 8.8e-08
-      {"megakernel-path.fast.nee.rr.generic.rolled.phong.glass.mesh.pbr.point.orthographic", {0.9899, 1e-2}},
-      // 100.00%, 5.8e-09; 100.00%, 3.0e-09
-      {"megakernel-lockstep.double.nee.no-rr.specialised.unrolled.no-phong.glass.mesh.pbr-transmission.spot.orthographic", {0.9939, 1e-6}},
-      // 100.00%, 1.4e-08; 100.00%, 8.3e-09
-      {"wavefront.double.nee.rr.generic.rolled.phong.no-glass.spheres.pbr-volume.directional.perspective", {0.9939, 1e-6}},
-      // 100.00%, 1.2e-08; 100.00%, 8.0e-09
-      {"megakernel-lockstep.robust.book.rr.generic.rolled.phong.no-glass.mesh.pbr-transmission.no-punctual.orthographic", {0.9939, 1e-6}},
-      // 100.00%, 5.0e-08; 100.00%, 1.2e-08
-      {"wavefront.fast.book.no-rr.specialised.unrolled.no-phong.glass.spheres.pbr.no-punctual.perspective", {0.9939, 1e-5}},
-      // 100.00%, 9.6e-09; 100.00%, 8.9e-09
-      {"wavefront.robust.nee.no-rr.specialised.rolled.phong.glass.mesh.no-pbr.directional.orthographic", {0.9939, 1e-6}},
-      // 100.00%, 6.3e-07; 100.00%, 4.1e-07
-      {"megakernel-lockstep.fast.nee.no-rr.generic.unrolled.no-phong.no-glass.spheres.pbr-volume.point.perspective", {0.9939, 1e-5}},
-      // 100.00%, 9.4e-09; 100.00%, 7.4e-09
-      {"megakernel-path.robust.nee.rr.specialised.unrolled.phong.no-glass.spheres.pbr-volume.spot.orthographic", {0.9939, 1e-6}},
-      // 99.19%, 2.5e-06; 98.38%, 2.0e-06
-      {"megakernel-lockstep.fast.nee.rr.generic.rolled.no-phong.no-glass.mesh.no-pbr.spot.perspective", {0.9777, 1e-2}},
-      // 89.09%, 3.0e-04; 89.90%, 1.6e-04
-      {"megakernel-path.fast.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.pbr-transmission.directional.perspective", {0.8848, 1e-2}},
-      // 100.00%, 6.7e-10; 100.00%, 4.2e-09
-      {"megakernel-path.double.book.no-rr.specialised.unrolled.no-phong.glass.mesh.pbr-volume.no-punctual.perspective", {0.9939, 1e-6}},
-      // 100.00%, 1.4e-08; 100.00%, 4.2e-09
-      {"wavefront.double.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.no-pbr.point.perspective", {0.9939, 1e-6}},
-      // 100.00%, 1.4e-08; 100.00%, 2.1e-09
-      {"megakernel-lockstep.double.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.pbr.directional.perspective", {0.9939, 1e-6}},
-      // 100.00%, 1.8e-08; 100.00%, 1.2e-08
-      {"wavefront.robust.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.pbr.spot.perspective", {0.9939, 1e-5}},
-      // 100.00%, 1.5e-08; 100.00%, 7.9e-09
-      {"wavefront.robust.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.pbr-transmission.no-punctual.perspective", {0.9939, 1e-6}},
-      // 100.00%, 2.6e-08; 100.00%, 6.5e-09
-      {"megakernel-path.robust.nee.no-rr.specialised.unrolled.no-phong.no-glass.spheres.pbr-transmission.point.perspective", {0.9939, 1e-5}},
+      // 100.00%, 1.2e-08
+      {"megakernel-lockstep.robust.nee.no-rr.generic.rolled.phong.no-glass.spheres.pbr-transmission.spot.perspective."
+       "environment-image.no-aovs.no-textures",
+       {0.9939, 1e-6}},
+      // 88.28%, 5.5e-04
+      {"megakernel-path.fast.nee.rr.specialised.unrolled.no-phong.glass.spheres.pbr-transmission.spot.perspective."
+       "no-environment.no-aovs.no-textures",
+       {0.8767, 1e-2}},
   };
-
   return bounds;
 }
 SameSeedBound bound_for(const KernelVariant& variant) {
@@ -397,7 +371,24 @@ std::string variant_test_name(const ::testing::TestParamInfo<KernelVariant>& inf
   return name;
 }
 
-INSTANTIATE_TEST_SUITE_P(KernelVariants, OclgrindVariant, ::testing::ValuesIn(covering_kernel_variants()),
+// The covering set in two parts: its first variants, which between them hold every value of every
+// dimension (label oclgrind, the default run), and the rest, which complete every pair (label
+// oclgrind-pairs, tests/CMakeLists.txt: each costs Oclgrind and PoCL a cold build of its kernels,
+// 30-260 s on 2 cores, too much for every CI run; docs/oclgrind.md).
+std::vector<KernelVariant> variants_with_every_value() {
+  std::vector<KernelVariant> all = covering_kernel_variants();
+  all.resize(value_covering_prefix(all));
+  return all;
+}
+std::vector<KernelVariant> variants_completing_the_pairs() {
+  std::vector<KernelVariant> all = covering_kernel_variants();
+  all.erase(all.begin(), all.begin() + std::ptrdiff_t(value_covering_prefix(all)));
+  return all;
+}
+
+INSTANTIATE_TEST_SUITE_P(KernelVariants, OclgrindVariant, ::testing::ValuesIn(variants_with_every_value()),
+                         variant_test_name);
+INSTANTIATE_TEST_SUITE_P(KernelVariantPairs, OclgrindVariant, ::testing::ValuesIn(variants_completing_the_pairs()),
                          variant_test_name);
 
 }  // namespace

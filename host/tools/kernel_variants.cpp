@@ -1,6 +1,7 @@
 #include "tools/kernel_variants.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
 #include <tuple>
 
@@ -281,32 +282,52 @@ std::string KernelVariant::name() const {
 
 std::vector<KernelVariant> covering_kernel_variants() {
   const auto& dims = kernel_variant_dimensions();
-  // Every full combination, in odometer order (the last dimension fastest): the candidates.
-  std::vector<std::vector<int>> candidates{{}};
-  for (const VariantDimension& d : dims) {
-    std::vector<std::vector<int>> longer;
-    for (const auto& c : candidates)
-      for (int v = 0; v < int(d.values.size()); ++v) {
-        longer.push_back(c);
-        longer.back().push_back(v);
-      }
-    candidates = std::move(longer);
+  const size_t n = dims.size();
+  // Every full combination, in odometer order (the last dimension fastest), that can be rendered:
+  // the candidates, flat, n values each.
+  std::vector<int> odometer(n, 0);
+  std::vector<int8_t> candidates;
+  for (;;) {
+    if (renderable(odometer)) candidates.insert(candidates.end(), odometer.begin(), odometer.end());
+    size_t d = n;
+    while (d > 0 && ++odometer[d - 1] == int(dims[d - 1].values.size())) odometer[--d] = 0;
+    if (d == 0) break;
   }
-  candidates.erase(std::remove_if(candidates.begin(), candidates.end(),
-                                  [](const std::vector<int>& c) { return !renderable(c); }),
-                   candidates.end());
-  std::set<Pair> uncovered = all_pairs();
-  std::vector<KernelVariant> chosen;
-  while (!uncovered.empty()) {
-    const std::vector<int>* best = nullptr;
-    size_t best_gain = 0;
-    for (const auto& c : candidates) {
-      size_t gain = 0;
-      for (const Pair& p : pairs_of(c)) gain += uncovered.count(p);
-      if (gain > best_gain) best = &c, best_gain = gain;  // first of the best: deterministic
+  // The uncovered pairs as a dense table over value indices (offset[d] + value): a candidate's gain
+  // is the number of its pairs still uncovered (pairs no renderable combination holds are never in
+  // the table), summed with one lookup per pair.
+  std::vector<size_t> offset(n + 1, 0);
+  for (size_t d = 0; d < n; ++d) offset[d + 1] = offset[d] + dims[d].values.size();
+  const size_t values = offset[n];
+  std::vector<uint8_t> uncovered(values * values, 0);
+  size_t remaining = 0;
+  for (const auto& [a, va, b, vb] : all_pairs())
+    uncovered[(offset[size_t(a)] + size_t(va)) * values + offset[size_t(b)] + size_t(vb)] = 1, ++remaining;
+  std::vector<size_t> index(n);
+  auto gain_of = [&](const int8_t* c) {
+    for (size_t d = 0; d < n; ++d) index[d] = offset[d] + size_t(c[d]);
+    size_t gain = 0;
+    for (size_t a = 0; a < n; ++a) {
+      const uint8_t* row = &uncovered[index[a] * values];
+      for (size_t b = a + 1; b < n; ++b) gain += row[index[b]];
     }
-    for (const Pair& p : pairs_of(*best)) uncovered.erase(p);
-    chosen.push_back(KernelVariant{*best});
+    return gain;
+  };
+  std::vector<KernelVariant> chosen;
+  while (remaining > 0) {
+    const int8_t* best = nullptr;
+    size_t best_gain = 0;
+    for (size_t k = 0; k < candidates.size(); k += n) {
+      const size_t gain = gain_of(&candidates[k]);
+      if (gain > best_gain) best = &candidates[k], best_gain = gain;  // first of the best: deterministic
+    }
+    KernelVariant v{std::vector<int>(best, best + n)};
+    for (const auto& [a, va, b, vb] : pairs_of(v.choice)) {
+      uint8_t& cell = uncovered[(offset[size_t(a)] + size_t(va)) * values + offset[size_t(b)] + size_t(vb)];
+      remaining -= cell;
+      cell = 0;
+    }
+    chosen.push_back(std::move(v));
   }
   // Greedy can leave an early pick redundant once later ones cover its pairs: drop such picks,
   // first to last, so every variant of the set adds a pair.
@@ -319,6 +340,18 @@ std::vector<KernelVariant> covering_kernel_variants() {
       ++i;
   }
   return chosen;
+}
+
+size_t value_covering_prefix(const std::vector<KernelVariant>& variants) {
+  const auto& dims = kernel_variant_dimensions();
+  std::vector<std::set<int>> seen(dims.size());
+  for (size_t k = 0; k < variants.size(); ++k) {
+    for (size_t d = 0; d < dims.size(); ++d) seen[d].insert(variants[k].choice[d]);
+    bool all = true;
+    for (size_t d = 0; d < dims.size(); ++d) all = all && seen[d].size() == dims[d].values.size();
+    if (all) return k + 1;
+  }
+  return variants.size();
 }
 
 std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& variants) {

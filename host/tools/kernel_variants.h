@@ -66,6 +66,12 @@ struct KernelVariant {
 // Deterministic: the same list on every machine and run.
 std::vector<KernelVariant> covering_kernel_variants();
 
+// The length of the shortest prefix of `variants` that holds every value of every dimension (the
+// covering set's first few do: the greedy picks the variants that cover the most pairs first).
+// The Oclgrind tier's default run renders that prefix; the rest of the set (every pair) runs
+// under the label oclgrind-pairs (docs/oclgrind.md). variants.size() when no prefix holds them all.
+size_t value_covering_prefix(const std::vector<KernelVariant>& variants);
+
 // Pairs of values (of two different dimensions) that `variants` leaves uncovered, as
 // "dimension=value + dimension=value" strings; empty when the set covers every pair.
 std::vector<std::string> uncovered_pairs(const std::vector<KernelVariant>& variants);
