@@ -35,6 +35,29 @@ TEST(KernelVariants, CoverEveryPairOfValues) {
   for (const KernelVariant& v : variants) EXPECT_TRUE(names.insert(v.name()).second) << v.name();
 }
 
+// The Oclgrind tier's default part (docs/oclgrind.md): the shortest prefix holding every value of
+// every dimension, and no shorter one does.
+TEST(KernelVariants, ValueCoveringPrefixHoldsEveryValue) {
+  const auto variants = covering_kernel_variants();
+  const size_t k = value_covering_prefix(variants);
+  ASSERT_GE(k, 1u);
+  ASSERT_LT(k, variants.size());  // the pairs need more variants than the values
+  const auto& dims = kernel_variant_dimensions();
+  auto values_held = [&](size_t prefix) {
+    size_t held = 0;
+    for (size_t d = 0; d < dims.size(); ++d) {
+      std::set<int> seen;
+      for (size_t i = 0; i < prefix; ++i) seen.insert(variants[i].choice[d]);
+      held += seen.size();
+    }
+    return held;
+  };
+  size_t all = 0;
+  for (const auto& d : dims) all += d.values.size();
+  EXPECT_EQ(values_held(k), all);
+  EXPECT_LT(values_held(k - 1), all);
+}
+
 TEST(KernelVariants, SameListEveryTime) {
   const auto a = covering_kernel_variants(), b = covering_kernel_variants();
   ASSERT_EQ(a.size(), b.size());
