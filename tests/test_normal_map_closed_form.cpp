@@ -288,12 +288,12 @@ TEST(NormalMapClosedForm, HandednessMirrorsTheBitangent) {
   }
 }
 
-// The house rule (docs/textures.md, "No light below the surface"). A map tilted 120 degrees
-// (towards the bitangent) puts the mapped normal below the plane: the camera, looking straight
-// down, sees it from behind, so the unmapped normal (+y) shades, and the image is the flat
-// plane's. And light arriving from below the plane, along a direction the 60-degree-tilted
+// The house rule (docs/textures.md, "Normal maps": no light below the surface). A map tilted 120
+// degrees (towards the bitangent) puts the mapped normal below the plane: the camera, looking
+// straight down, sees it from behind, so the unmapped normal (+y) shades, and the image is the
+// flat plane's. And light arriving from below the plane, along a direction the 60-degree-tilted
 // normal faces (n' . l = 0.72), carries nothing: the image is black, where the mapped normal's
-// cosine alone would light it.
+// cosine alone would light it (0.6 / pi 2 0.72 = 0.275).
 TEST(NormalMapClosedForm, HouseRuleMapSeenFromBehindAndLightFromBelow) {
   const Tilt behind = tilt(120, 90);
   const Expected flat = expected_image([&](double x, double z) { return point_irradiance(kLight, {0, 1, 0}, x, z); });
