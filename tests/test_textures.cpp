@@ -1,9 +1,9 @@
 // Textures (docs/textures.md): the device's lookups (kernels/texture.cl) against the host's in
 // double (scene/texture.cpp) over every storage, channel count, wrap mode and filter, at texel
 // centres, texel edges and outside [0, 1]; sRGB decoding and half rounding against the standards;
-// the texture-coordinate conventions of inline meshes, OBJ files and glTF (a marker image seen
-// through an orthographic camera); Debian's BoxTextured glTF in its three forms; a flat normal
-// map leaving the image unchanged.
+// the texture-coordinate conventions of inline meshes, OBJ and PLY files and glTF (a marker image
+// seen through an orthographic camera); Debian's BoxTextured glTF in its three forms; a flat
+// normal map leaving the image unchanged.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -269,6 +269,56 @@ file = "quad.obj"
 material = { type = "emitter", emission = { texture = "marker.png", filter = "nearest" } }
 )";
   expect_marker(corners(load_scene_string(text, dir + "/scene.toml")), "OBJ file");
+}
+
+// The same quad as a PLY file, its texture coordinates under each of the vertex property names
+// PLY writers use (s/t: Blender; u/v; texture_u/texture_v; texture_s/texture_t), as ASCII and as
+// binary little-endian floats: (0, 0) at the image's bottom-left, as in OBJ.
+TEST(TextureConventions, PlyFileUvsAreBottomLeft) {
+  install_scene_image_reader();
+  const std::string dir = temp_dir("ply");
+  write_marker(dir);
+  const float vertices[4][5] = {{-1, -1, 0, 0, 0}, {1, -1, 0, 1, 0}, {1, 1, 0, 1, 1}, {-1, 1, 0, 0, 1}};
+  const std::pair<const char*, const char*> names[] = {{"s", "t"}, {"u", "v"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+  for (const auto& [u, v] : names)
+    for (const bool binary : {false, true}) {
+      const std::string what = std::string("PLY ") + (binary ? "binary" : "ASCII") + ", " + u + "/" + v;
+      std::ofstream ply(dir + "/quad.ply", std::ios::binary);
+      ply << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\nelement vertex 4\n"
+          << "property float x\nproperty float y\nproperty float z\nproperty float " << u << "\nproperty float " << v
+          << "\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+      if (binary) {
+        ply.write(reinterpret_cast<const char*>(vertices), sizeof vertices);  // x86 and every OpenCL host: little-endian
+        const unsigned char count = 4;
+        const int32_t face[4] = {0, 1, 2, 3};
+        ply.write(reinterpret_cast<const char*>(&count), 1);
+        ply.write(reinterpret_cast<const char*>(face), sizeof face);
+      } else {
+        for (const auto& vertex : vertices) ply << vertex[0] << " " << vertex[1] << " " << vertex[2] << " " << vertex[3] << " " << vertex[4] << "\n";
+        ply << "4 0 1 2 3\n";
+      }
+      ply.close();
+      const std::string text = std::string(kCamera) + R"(
+[[mesh]]
+file = "quad.ply"
+material = { type = "emitter", emission = { texture = "marker.png", filter = "nearest" } }
+)";
+      expect_marker(corners(load_scene_string(text, dir + "/scene.toml")), what);
+    }
+  // texture_s/texture_t are read (as texture_u/texture_v) only where the vertex has no property
+  // assimp reads for that coordinate itself: u/v here, which win (assimp would take the last).
+  std::ofstream(dir + "/both.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nproperty float u\nproperty float texture_s\nproperty float v\n"
+                                      "property float texture_t\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                      "end_header\n0 0 0 0 0.5 0 0.5\n1 0 0 1 0.5 0 0.5\n0 1 0 0 0.5 1 0.5\n3 0 1 2\n";
+  const Scene both = load_scene_string(
+      std::string(kCamera) + "[[mesh]]\nfile = \"both.ply\"\nmaterial = { type = \"emitter\", emission = [1, 1, 1] }\n",
+      dir + "/both.toml");
+  ASSERT_EQ(both.meshes.at(0).uvs.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(both.meshes[0].uvs[i][0], both.meshes[0].positions[i][0]) << "vertex " << i;
+    EXPECT_EQ(both.meshes[0].uvs[i][1], both.meshes[0].positions[i][1]) << "vertex " << i;
+  }
 }
 
 // A glTF quad whose TEXCOORD_0 follows glTF's convention ((0, 0) at the image's top-left), the

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Bad texture input through the real `clpt render` (docs/textures.md): a missing, empty,
 # unreadable, truncated or absurdly large image, a directory named as a texture, a texture on a
-# sphere or on a mesh without texture coordinates, a bad wrap word, a glTF image that is not
-# there. Each must exit 3 (a bad scene), print a message that starts with the file and key (or
-# glTF element) and names the image, and leave no output. (The
-# line numbers are those of mesh_scene below.)
+# sphere or on a mesh (inline, OBJ or PLY) without texture coordinates, a bad wrap word, a glTF
+# image that is not there. Each must exit 3 (a bad scene), print a message that starts with the
+# file and key (or glTF element) and names the image, and leave no output. (The line numbers are
+# those of mesh_scene below.)
 #   texture_bad_cli.sh CLPT WORK_DIR
 set -u
 clpt=$1 work=$2
@@ -73,6 +73,26 @@ done
 mesh_scene nouvs '{ type = "pbr", roughness = { texture = "good.png", channel = 1 } }' ""
 expect_refused "clpt: error: $work/nouvs.toml:8:1: mesh 'mesh[0]' has no texture coordinates" \
     "mesh[0].material.roughness" "$work/nouvs.toml"
+# The same for mesh files without texture coordinates: an OBJ (no vt) and a PLY (no s/t, u/v,
+# texture_u/texture_v or texture_s/texture_t): the message names the file as having none.
+printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n' >"$work/bare.obj"
+printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n4 0 1 2 3\n' >"$work/bare.ply"
+for ext in obj ply; do
+  cat >"$work/nouvs_$ext.toml" <<TOML
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+[[sphere]]
+center = [0, 5, 5]
+radius = 1
+material = { type = "emitter", emission = [4, 4, 4] }
+[[mesh]]
+file = "bare.$ext"
+material = { type = "lambertian", reflectance = { texture = "good.png" } }
+TOML
+  expect_refused "clpt: error: $work/nouvs_$ext.toml:8:1: mesh 'mesh[0]' has no texture coordinates (bare.$ext has none)" \
+      "mesh[0].material.reflectance" "$work/nouvs_$ext.toml"
+done
 mesh_scene wrap '{ type = "lambertian", reflectance = { texture = "good.png", wrap = "wrapped" } }'
 expect_refused "clpt: error: $work/wrap.toml:" "mesh[0].material.reflectance.wrap" "$work/wrap.toml"
 cat >"$work/sphere.toml" <<TOML

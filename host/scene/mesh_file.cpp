@@ -66,6 +66,54 @@ std::string without_obj_material_libraries(std::string_view bytes) {
   return out;
 }
 
+// `bytes` (a PLY file whose header refuse_what_assimp_cannot_handle has passed) with the vertex
+// properties texture_s and texture_t renamed texture_u and texture_v (the same length: the body,
+// binary or not, is unchanged). assimp 5.2 reads texture coordinates from vertex properties s/t,
+// u/v, tx/ty and texture_u/texture_v but not texture_s/texture_t, which other PLY writers use. A
+// vertex element that already has a property assimp reads for that coordinate keeps its names.
+std::string with_ply_texture_st_as_uv(std::string_view bytes) {
+  std::string out(bytes);
+  const size_t header_end = ply_header_end(bytes);
+  static const std::set<std::string_view> kReadAsU = {"u", "s", "tx", "texture_u"}, kReadAsV = {"v", "t", "ty", "texture_v"};
+  // The lines of the header, split into words, with where each line's last word starts.
+  struct Line {
+    std::vector<std::string_view> words;
+    size_t last_word_at = 0;
+  };
+  std::vector<Line> lines;
+  for (size_t begin = 0; begin < header_end;) {
+    size_t end = out.find('\n', begin);
+    if (end == std::string::npos || end > header_end) end = header_end;
+    Line line;
+    for (size_t at = begin; at < end;) {
+      while (at < end && std::isspace(static_cast<unsigned char>(bytes[at]))) ++at;
+      size_t stop = at;
+      while (stop < end && !std::isspace(static_cast<unsigned char>(bytes[stop]))) ++stop;
+      if (stop > at) line.words.push_back(bytes.substr(at, stop - at)), line.last_word_at = at;
+      at = stop;
+    }
+    lines.push_back(line);
+    begin = end + 1;
+  }
+  for (size_t i = 0; i < lines.size(); ++i) {
+    if (lines[i].words.size() != 3 || lines[i].words[0] != "element" || lines[i].words[1] != "vertex") continue;
+    size_t stop = i + 1;
+    bool has_u = false, has_v = false;
+    for (; stop < lines.size() && (lines[stop].words.empty() || lines[stop].words[0] != "element"); ++stop)
+      if (lines[stop].words.size() == 3 && lines[stop].words[0] == "property") {
+        has_u = has_u || kReadAsU.count(lines[stop].words[2]);
+        has_v = has_v || kReadAsV.count(lines[stop].words[2]);
+      }
+    for (size_t k = i + 1; k < stop; ++k) {
+      const Line& line = lines[k];
+      if (line.words.size() != 3 || line.words[0] != "property") continue;
+      if (!has_u && line.words[2] == "texture_s") out.replace(line.last_word_at, 9, "texture_u");
+      if (!has_v && line.words[2] == "texture_t") out.replace(line.last_word_at, 9, "texture_v");
+    }
+  }
+  return out;
+}
+
 // Throws MeshFileError naming the line (1-based) unless `header` (the bytes up to end_header)
 // is a PLY header by the format's grammar: "ply", one "format ascii|binary_little_endian|
 // binary_big_endian 1.0", then comment, obj_info, "element NAME COUNT", "property TYPE NAME" and
@@ -245,8 +293,10 @@ std::string read_mesh_file(const std::string& path) {
 MeshFileContents parse_mesh_file(std::string_view bytes, const std::string& extension) {
   if (bytes.empty()) throw MeshFileError("the mesh file is empty");
   refuse_what_assimp_cannot_handle(bytes, extension);
-  const std::string obj_text = extension == "obj" ? without_obj_material_libraries(bytes) : std::string();
-  if (extension == "obj") bytes = obj_text;
+  const std::string text = extension == "obj"   ? without_obj_material_libraries(bytes)
+                           : extension == "ply" ? with_ply_texture_st_as_uv(bytes)
+                                                : std::string();
+  if (extension == "obj" || extension == "ply") bytes = text;
   Assimp::Importer importer;
   keep_only_readers_of(importer, extension);
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), kImportFlags, extension.c_str());
