@@ -20,7 +20,8 @@ struct SourcePosition {
   std::string file;
   int line = 0;
   int column = 0;
-  std::string str() const;  // "file:line:column"
+  // "file:line:column"; a position without a line (never produced by the loader) names the file.
+  std::string str() const { return line <= 0 ? file : file + ":" + std::to_string(line) + ":" + std::to_string(column); }
 };
 
 // Pbr: the glTF 2.0 metallic-roughness material (the specification's Appendix B) with its

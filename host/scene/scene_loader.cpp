@@ -36,12 +36,6 @@ namespace clpt {
 // The TOML key of a tangent-space normal map (docs/textures.md).
 constexpr const char* kNormalMapKey = "normal_map";
 
-std::string SourcePosition::str() const {
-  // A position without a line (never produced by the loader) still names the file.
-  if (line <= 0) return file;
-  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
-}
-
 const char* material_type_name(MaterialType type) {
   switch (type) {
     case MaterialType::Lambertian:
