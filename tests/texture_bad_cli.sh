@@ -70,6 +70,9 @@ for image in missing.png dir.png truncated.png huge.png garbage.png empty.png; d
   mesh_scene "$image" "{ type = \"lambertian\", reflectance = { texture = \"$image\" } }"
   expect_refused "clpt: error: $work/$image.toml:12:61: mesh[0].material.reflectance.texture: " "$image" "$work/$image.toml"
 done
+# A truncated PNG is named as such (clpt checks for the IEND chunk before the codec reads it).
+"$clpt" render "$work/truncated.png.toml" -o "$work/t.exr" 2>&1 | grep -q "truncated.png: cannot read image: a PNG file ends with its IEND chunk and this one does not (truncated?)" ||
+  fail "the truncated PNG's message does not say it is truncated"
 mesh_scene nouvs '{ type = "pbr", roughness = { texture = "good.png", channel = 1 } }' ""
 expect_refused "clpt: error: $work/nouvs.toml:8:1: mesh 'mesh[0]' has no texture coordinates" \
     "mesh[0].material.roughness" "$work/nouvs.toml"
