@@ -18,6 +18,7 @@
 #include "kernels/kernel_options.h"
 #include "render_test_util.h"
 #include "scene/scene_loader.h"
+#include "scene/texture_load.h"
 
 namespace clpt::test {
 namespace {
@@ -59,10 +60,12 @@ GltfBuilder quad(const std::vector<float>& xyz, const nlohmann::json& material, 
   return b;
 }
 
-// A glTF material: black base colour of alpha `alpha`, emission (0.2, 0.4, 0.6), double-sided.
-nlohmann::json material(double alpha, const std::string& mode, double cutoff = -1) {
+// A glTF material: black base colour of alpha `alpha`, emission (0.2, 0.4, 0.6) (none with
+// `dark`: a blocker in the shadow scenes, which would otherwise light the floor itself),
+// double-sided.
+nlohmann::json material(double alpha, const std::string& mode, double cutoff = -1, bool dark = false) {
   nlohmann::json m = {{"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 0, alpha}}, {"metallicFactor", 0}}},
-                      {"emissiveFactor", {0.2, 0.4, 0.6}},
+                      {"emissiveFactor", dark ? std::vector<double>{0, 0, 0} : std::vector<double>{0.2, 0.4, 0.6}},
                       {"doubleSided", true}};
   if (!mode.empty()) m["alphaMode"] = mode;
   if (cutoff >= 0) m["alphaCutoff"] = cutoff;
@@ -246,12 +249,12 @@ TEST(GltfAlpha, MaskShadowIsTheShadowOfItsOpaqueCells) {
   install_scene_image_reader();
   const std::string dir = temp_dir("mask_shadow");
   write_checker(dir + "/checker.png");
-  std::ofstream(dir + "/mask.gltf") << quad(kHorizontal, material(1, "MASK"), true).gltf_embedded();
+  std::ofstream(dir + "/mask.gltf") << quad(kHorizontal, material(1, "MASK", -1, true), true).gltf_embedded();
   // The opaque cells: texel (0, 0) is x, z in [-1, 0]; texel (1, 1) is x, z in [0, 1].
   GltfBuilder cells;
   const int position = cells.positions({-1, 1, 0, 0, 1, 0, 0, 1, -1, -1, 1, -1, 0, 1, 1, 1, 1, 1, 1, 1, 0, 0, 1, 0});
   const int indices = cells.indices({0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7});
-  cells.push("materials", material(1, ""));
+  cells.push("materials", material(1, "", -1, true));
   cells.node({{"mesh", cells.mesh({{"attributes", {{"POSITION", position}}}, {"indices", indices}, {"material", 0}})}});
   std::ofstream(dir + "/cells.gltf") << cells.gltf_embedded();
   const MeanVarianceImage reference = render(shadow_scene(dir, "nee", "cells.gltf"), kWays[0], 8, 256, 21);
@@ -274,7 +277,7 @@ TEST(GltfAlpha, MaskShadowIsTheShadowOfItsOpaqueCells) {
 TEST(GltfAlpha, BlendShadowPassesOneMinusAlphaOfTheLight) {
   install_scene_image_reader();
   const std::string dir = temp_dir("blend_shadow");
-  std::ofstream(dir + "/blend.gltf") << quad(kHorizontal, material(0.3, "BLEND"), false).gltf_embedded();
+  std::ofstream(dir + "/blend.gltf") << quad(kHorizontal, material(0.3, "BLEND", -1, true), false).gltf_embedded();
   const MeanVarianceImage open = render(shadow_scene(dir, "nee", ""), kWays[0], 8, 256, 31);
   const MeanVarianceImage book = render(shadow_scene(dir, "book", "blend.gltf"), kWays[0], 8, 256, 32);
   const int comparisons = 4 * 12;
@@ -298,6 +301,27 @@ TEST(GltfAlpha, BlendDecisionsAreTheSameInBothForms) {
   const MeanVarianceImage c = render(scene, kWays[2], 8, 4, 5);
   expect_same_image(a.mean, b.mean);
   expect_same_image(a.mean, c.mean);
+}
+
+// A texture's colour is read as the file stores it, not premultiplied by its alpha (OIIO's
+// default for PNG): a white texel of alpha 128 stays white, its alpha 128 / 255.
+TEST(GltfAlpha, TextureColoursAreNotPremultipliedByAlpha) {
+  install_scene_image_reader();
+  const std::string path = temp_dir("unassociated") + "/half.png";
+  const std::vector<unsigned char> rgba = {255, 255, 255, 128};
+  ImageToWrite image;
+  image.width = image.height = 1;
+  image.channels = {"R", "G", "B", "A"};
+  image.uint8 = true;
+  image.pixels = rgba.data();
+  ASSERT_EQ(write_png(path, image), "");
+  std::vector<TextureImage> images;
+  const int index = load_texture_image(images, path, path, ColorSpace::Srgb, "test");
+  const TextureImage& t = images[size_t(index)];
+  ASSERT_EQ(t.channels, 4);
+  EXPECT_NEAR(t.pixels[0], 1.0, 1e-6);
+  EXPECT_NEAR(t.pixels[2], 1.0, 1e-6);
+  EXPECT_NEAR(t.pixels[3], 128.0 / 255.0, 1e-6);
 }
 
 }  // namespace
