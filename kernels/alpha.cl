@@ -76,7 +76,7 @@ CLPT_INLINE bool alpha_cut(__global const uchar* texturing, uint triangle, Trian
     const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
     float u, v;
     triangle_uv(triangle_texturing(texturing, triangle), (float)(r.u * inv), (float)(r.v * inv), (float)(r.w * inv), &u, &v);
-    alpha *= clamp(texture_lookup(texturing, base, u, v).a, 0.0f, 1.0f);
+    alpha *= clamp(texture_lookup_alpha(texturing, base, u, v), 0.0f, 1.0f);
   }
   /* MASK: absent below the cutoff. BLEND: absent when a uniform number in (0, 1] exceeds alpha. */
   const float blend_threshold = (float)((alpha_hash(seed ^ alpha_hash(triangle)) >> 8) + 1u) * (1.0f / 16777216.0f);
