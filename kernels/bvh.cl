@@ -22,6 +22,7 @@
 #include "intersect.cl"
 #include "triangle.cl"
 #include "triangle_loop.cl"
+#include "alpha.cl"
 
 #ifndef CLPT_HAS_BVH
 #define CLPT_HAS_BVH 1
@@ -89,9 +90,13 @@ CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
  * shadow ray whose hit->t is the distance to the light). Spheres keep intersect.cl's contract:
  * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit; triangle
  * `skip_triangle` (a shadow ray's sampled light triangle, which cannot hide its own point; -1:
- * none) neither, in kernels with triangle lights. */
+ * none) neither, in kernels with triangle lights. With CLPT_HAS_ALPHA, a triangle hit where its
+ * material's alpha cuts the surface away (alpha.cl, seed `alpha_seed`) is no hit. */
 CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
-                              int skip, int skip_triangle, bool any_hit, Hit* hit) {
+                              int skip, int skip_triangle, bool any_hit, uint alpha_seed, Hit* hit) {
+#if !CLPT_HAS_ALPHA
+  (void)alpha_seed;
+#endif
 #if !CLPT_HAS_TRIANGLE_LIGHTS
   (void)skip_triangle; /* only a kernel with triangle lights skips a light's own triangle */
 #endif
@@ -137,11 +142,19 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       } else {
 #if CLPT_HAS_TRIANGLES
         for (uint i = first; i < first + count; ++i) {
-          const real t = triangle_intersect(&ray, &scene->triangles[i], hit->t);
-#if CLPT_HAS_TRIANGLE_LIGHTS
-          const bool closer = t < hit->t && (int)i != skip_triangle;
+#if CLPT_HAS_ALPHA
+          const TriangleTest test = triangle_test(&ray, &scene->triangles[i]);
+          const real t = triangle_test_distance(test, hit->t);
 #else
-          const bool closer = t < hit->t;
+          const real t = triangle_intersect(&ray, &scene->triangles[i], hit->t);
+#endif
+#if CLPT_HAS_TRIANGLE_LIGHTS
+          bool closer = t < hit->t && (int)i != skip_triangle;
+#else
+          bool closer = t < hit->t;
+#endif
+#if CLPT_HAS_ALPHA
+          if (closer) closer = !alpha_cut(scene->texturing, i, test, alpha_seed);
 #endif
           hit->t = closer ? t : hit->t;
           hit->sphere = closer ? -1 : hit->sphere;
@@ -171,12 +184,14 @@ CLPT_INLINE Hit no_hit(void) {
 /* Closest hit over the loop's spheres, and a small mesh's triangles where they are in a loop too
  * (triangle_loop.cl), alone (loop-free once unrolled: the first half of scene_closest_hit, which
  * the lockstep megakernel runs in its own vectorised region). */
-CLPT_INLINE Hit scene_loop_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d, int skip) {
+CLPT_INLINE Hit scene_loop_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d, int skip,
+                               uint alpha_seed) {
 #if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
   Hit hit = scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
-  triangle_loop_hit(scene->triangles, o, d, &hit);
+  triangle_loop_hit(scene->triangles, scene->texturing, o, d, alpha_seed, &hit);
   return hit;
 #else
+  (void)alpha_seed;
   return scene_intersect(scene->spheres, params->sphere_count, o, d, params->ray_epsilon, skip);
 #endif
 }
@@ -184,10 +199,11 @@ CLPT_INLINE Hit scene_loop_hit(const SceneBuffers* scene, const GpuRenderParams*
 /* Narrows `hit` (the loop's closest hit, or no_hit()) to the hierarchy's closest hit before hit->t:
  * the second half of scene_closest_hit. Without a hierarchy: nothing. */
 CLPT_INLINE void scene_hierarchy_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d,
-                                     int skip, Hit* hit) {
+                                     int skip, uint alpha_seed, Hit* hit) {
 #if CLPT_HAS_BVH
-  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, -1, false, hit);
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, -1, false, alpha_seed, hit);
 #else
+  (void)alpha_seed;
   (void)scene;
   (void)params;
   (void)o;
@@ -197,11 +213,11 @@ CLPT_INLINE void scene_hierarchy_hit(const SceneBuffers* scene, const GpuRenderP
 #endif
 }
 
-/* Closest hit over the loop's spheres and the hierarchy. */
+/* Closest hit over the loop's spheres and the hierarchy (alpha_seed: alpha.cl, alpha_ray_seed). */
 CLPT_INLINE Hit scene_closest_hit(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o, Vec3 d,
-                                  int skip) {
-  Hit hit = scene_loop_hit(scene, params, o, d, skip);
-  scene_hierarchy_hit(scene, params, o, d, skip, &hit);
+                                  int skip, uint alpha_seed) {
+  Hit hit = scene_loop_hit(scene, params, o, d, skip, alpha_seed);
+  scene_hierarchy_hit(scene, params, o, d, skip, alpha_seed, &hit);
   return hit;
 }
 
@@ -209,11 +225,11 @@ CLPT_INLINE Hit scene_closest_hit(const SceneBuffers* scene, const GpuRenderPara
  * loop's spheres are tested by the caller's closest hit, path.cl), not counting sphere `skip` and
  * triangle `skip_triangle` (bvh_traverse). Without a hierarchy: false. */
 CLPT_INLINE bool scene_hierarchy_occluded(const SceneBuffers* scene, const GpuRenderParams* params, Vec3 o,
-                                          Vec3 d, real t_max, int skip, int skip_triangle) {
+                                          Vec3 d, real t_max, int skip, int skip_triangle, uint alpha_seed) {
 #if CLPT_HAS_BVH
   Hit hit = no_hit();
   hit.t = t_max;
-  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, skip_triangle, true, &hit);
+  bvh_traverse(scene, params->bvh_node_count, o, d, params->ray_epsilon, skip, skip_triangle, true, alpha_seed, &hit);
   return hit.sphere >= 0 || hit.triangle >= 0;
 #else
   (void)scene;
@@ -223,6 +239,7 @@ CLPT_INLINE bool scene_hierarchy_occluded(const SceneBuffers* scene, const GpuRe
   (void)t_max;
   (void)skip;
   (void)skip_triangle;
+  (void)alpha_seed;
   return false;
 #endif
 }

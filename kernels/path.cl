@@ -31,7 +31,8 @@
  * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
  * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
  * CLPT_HAS_BVH (traversal, bvh.cl), CLPT_HAS_TRIANGLE_LIGHTS (light.cl), CLPT_HAS_ENVIRONMENT
- * (environment.cl) and CLPT_HAS_TEXTURES (texture.cl, apply_textures below) compile those in;
+ * (environment.cl), CLPT_HAS_TEXTURES (texture.cl, apply_textures below) and CLPT_HAS_ALPHA
+ * (alpha.cl: MASK and BLEND surfaces cut out inside the ray queries) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
 #define CLPT_PATH_CL
@@ -108,19 +109,35 @@ CLPT_INLINE PathState path_begin(const GpuRenderParams* params, uint pixel, uint
   return path;
 }
 
+/* The seed of the coverage decisions (alpha.cl) of the path's ray at its bounce (stream: the
+ * segment's ray or its shadow ray); 0 where no alpha is compiled. */
+CLPT_INLINE uint path_alpha_seed(const GpuRenderParams* params, const PathState* path, uint stream) {
+#if CLPT_HAS_ALPHA
+  return alpha_ray_seed(params->seed_lo, params->seed_hi, path->pixel, path->sample, path->bounce, stream);
+#else
+  (void)params;
+  (void)path;
+  (void)stream;
+  return 0u;
+#endif
+}
+
 CLPT_INLINE Hit path_intersect(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params) {
-  return scene_closest_hit(scene, params, path->origin, path->direction, path->skip_sphere);
+  return scene_closest_hit(scene, params, path->origin, path->direction, path->skip_sphere,
+                           path_alpha_seed(params, path, CLPT_ALPHA_STREAM_HIT));
 }
 
 /* path_intersect in two halves, for a caller that puts a barrier between them (the lockstep
  * megakernel): the loop's spheres, then the hierarchy narrowing that hit. Together they are
  * path_intersect exactly. */
 CLPT_INLINE Hit path_intersect_loop(const PathState* path, const SceneBuffers* scene, const GpuRenderParams* params) {
-  return scene_loop_hit(scene, params, path->origin, path->direction, path->skip_sphere);
+  return scene_loop_hit(scene, params, path->origin, path->direction, path->skip_sphere,
+                        path_alpha_seed(params, path, CLPT_ALPHA_STREAM_HIT));
 }
 CLPT_INLINE void path_intersect_hierarchy(const PathState* path, const SceneBuffers* scene,
                                           const GpuRenderParams* params, Hit* hit) {
-  scene_hierarchy_hit(scene, params, path->origin, path->direction, path->skip_sphere, hit);
+  scene_hierarchy_hit(scene, params, path->origin, path->direction, path->skip_sphere,
+                      path_alpha_seed(params, path, CLPT_ALPHA_STREAM_HIT), hit);
 }
 
 /* A surface's material in private memory, read field by field (a struct copy would be lowered to
@@ -410,6 +427,7 @@ typedef struct ShadowQuery {
   real t_max;
   int skip;
   int skip_triangle;
+  uint alpha_seed; /* alpha.cl: the shadow ray's coverage decisions (0 without CLPT_HAS_ALPHA) */
   CLPT_ABI_PAD(int, 1)
 } ShadowQuery;
 
@@ -421,6 +439,7 @@ CLPT_INLINE ShadowQuery no_shadow_query(void) {
   q.t_max = (real)0;
   q.skip = -1;
   q.skip_triangle = -1;
+  q.alpha_seed = 0u;
   return q;
 }
 
@@ -469,6 +488,7 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   q->t_max = near_light;
   q->skip = skip;
   q->skip_triangle = skip_triangle;
+  q->alpha_seed = path_alpha_seed(params, path, CLPT_ALPHA_STREAM_SHADOW);
   *segments += 1u;
   /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
    * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
@@ -484,7 +504,8 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
 #endif
 #if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
   /* A small mesh's triangles in their loop (triangle_loop.cl): none before the light either. */
-  loop_clear = loop_clear & !triangle_loop_blocked(scene->triangles, origin, shadow_direction, near_light, skip_triangle);
+  loop_clear = loop_clear & !triangle_loop_blocked(scene->triangles, scene->texturing, origin, shadow_direction, near_light,
+                                                   skip_triangle, q->alpha_seed);
 #endif
   /* int operands and `&`, not `&&`: f_cos's reads behind a short-circuit would be masked loads
    * (maths.cl, v3_is_zero). */
@@ -704,7 +725,8 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
  * hierarchy). */
 CLPT_INLINE bool shadow_query_blocked(const ShadowQuery* q, const SceneBuffers* scene, const GpuRenderParams* params) {
   return !v3_is_zero(q->light) &&
-         scene_hierarchy_occluded(scene, params, q->origin, q->direction, q->t_max, q->skip, q->skip_triangle);
+         scene_hierarchy_occluded(scene, params, q->origin, q->direction, q->t_max, q->skip, q->skip_triangle,
+                                  q->alpha_seed);
 }
 
 /* Adds the shadow ray's light unless the hierarchy blocks it. */

@@ -200,9 +200,15 @@ CLPT_INLINE TexelRgba texel_fetch(__global const uchar* texturing, __global cons
   return rgba;
 }
 
-/* Texture `index` at mesh coordinates (u, v): linear RGBA. */
-CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index, float u, float v) {
-  __global const GpuTexture* t = texture_at(texturing, index);
+/* The four texels a lookup reads and their bilinear weights (nearest: weight 1 on (ix0, iy0)). */
+typedef struct TexelFootprint {
+  uint ix0, ix1, iy0, iy1;
+  float w00, w10, w01, w11;
+  CLPT_ABI_PAD(int, 1)
+} TexelFootprint;
+
+/* Where texture t is read at mesh coordinates (u, v): its uv transform, the wrap modes, the filter. */
+CLPT_INLINE TexelFootprint texture_footprint(__global const GpuTexture* t, float u, float v) {
   const float tu = t->transform[0] * u + t->transform[1] * v + t->transform[2];
   const float tv = t->transform[3] * u + t->transform[4] * v + t->transform[5];
   const int w = (int)t->width, h = (int)t->height;
@@ -213,17 +219,49 @@ CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index
   const float x0 = floor(fx), y0 = floor(fy);
   const float wx = nearest ? 0.0f : fx - x0, wy = nearest ? 0.0f : fy - y0;
   const int ix = (int)x0, iy = (int)y0;
-  const uint ix0 = texture_wrap_index(ix, w, t->wrap_u), ix1 = texture_wrap_index(ix + 1, w, t->wrap_u);
-  const uint iy0 = texture_wrap_index(iy, h, t->wrap_v), iy1 = texture_wrap_index(iy + 1, h, t->wrap_v);
+  TexelFootprint f;
+  f.ix0 = texture_wrap_index(ix, w, t->wrap_u);
+  f.ix1 = texture_wrap_index(ix + 1, w, t->wrap_u);
+  f.iy0 = texture_wrap_index(iy, h, t->wrap_v);
+  f.iy1 = texture_wrap_index(iy + 1, h, t->wrap_v);
+  f.w00 = (1.0f - wx) * (1.0f - wy);
+  f.w10 = wx * (1.0f - wy);
+  f.w01 = (1.0f - wx) * wy;
+  f.w11 = wx * wy;
+  return f;
+}
+
+/* Texture `index` at mesh coordinates (u, v): linear RGBA. */
+CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index, float u, float v) {
+  __global const GpuTexture* t = texture_at(texturing, index);
+  const TexelFootprint f = texture_footprint(t, u, v);
+  const uint ix0 = f.ix0, ix1 = f.ix1, iy0 = f.iy0, iy1 = f.iy1;
   const TexelRgba a = texel_fetch(texturing, t, ix0, iy0), b = texel_fetch(texturing, t, ix1, iy0);
   const TexelRgba c = texel_fetch(texturing, t, ix0, iy1), d = texel_fetch(texturing, t, ix1, iy1);
-  const float w00 = (1.0f - wx) * (1.0f - wy), w10 = wx * (1.0f - wy), w01 = (1.0f - wx) * wy, w11 = wx * wy;
+  const float w00 = f.w00, w10 = f.w10, w01 = f.w01, w11 = f.w11;
   TexelRgba out;
   out.r = w00 * a.r + w10 * b.r + w01 * c.r + w11 * d.r;
   out.g = w00 * a.g + w10 * b.g + w01 * c.g + w11 * d.g;
   out.b = w00 * a.b + w10 * b.b + w01 * c.b + w11 * d.b;
   out.a = w00 * a.a + w10 * b.a + w01 * c.a + w11 * d.a;
   return out;
+}
+
+/* The alpha of texel (x, y): its last channel for 2 or 4 channels, else 1 (texel_fetch's .a,
+ * without reading the colour channels). */
+CLPT_INLINE float texel_alpha(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {
+  const uint channels = t->channels;
+  if ((channels & 1u) != 0u) return 1.0f;
+  return texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + channels - 1u);
+}
+
+/* Texture `index`'s alpha at mesh coordinates (u, v): texture_lookup's .a, reading one channel
+ * of the four texels (alpha.cl's test runs inside the ray queries, for every candidate hit). */
+CLPT_INLINE float texture_lookup_alpha(__global const uchar* texturing, uint index, float u, float v) {
+  __global const GpuTexture* t = texture_at(texturing, index);
+  const TexelFootprint f = texture_footprint(t, u, v);
+  return f.w00 * texel_alpha(texturing, t, f.ix0, f.iy0) + f.w10 * texel_alpha(texturing, t, f.ix1, f.iy0) +
+         f.w01 * texel_alpha(texturing, t, f.ix0, f.iy1) + f.w11 * texel_alpha(texturing, t, f.ix1, f.iy1);
 }
 
 /* Channel `channel` (0 to 3) of an RGBA value, by bit tests. */

@@ -153,16 +153,26 @@ typedef struct GpuTexture {
   float pad;
 } GpuTexture;
 
+/* glTF alphaMode (GpuMaterialTextures.alpha_mode; kernels/alpha.cl). */
+#define CLPT_ALPHA_OPAQUE 0u /* alpha ignored */
+#define CLPT_ALPHA_MASK 1u   /* the surface is there where alpha >= alpha_cutoff */
+#define CLPT_ALPHA_BLEND 2u  /* the surface is there with probability alpha (coverage) */
+
 /* A textured material's textures (indices into the texture table, or CLPT_TEXTURE_NONE): each
- * multiplies its factor in the triangle's GpuMaterial. 32 bytes. */
+ * multiplies its factor in the triangle's GpuMaterial; and its alpha (glTF alphaMode: alpha =
+ * `alpha` x the base colour texture's alpha channel). A material with a MASK or BLEND alpha has a
+ * record even without textures. 48 bytes. */
 typedef struct GpuMaterialTextures {
-  clpt_u32 base_color;   /* RGB x reflectance (the base colour) */
+  clpt_u32 base_color;   /* RGB x reflectance (the base colour); its alpha x `alpha` */
   clpt_u32 metallic;     /* its channel x metallic */
   clpt_u32 roughness;    /* its channel x roughness */
   clpt_u32 emission;     /* RGB x emission */
   clpt_u32 normal;       /* tangent-space normal map */
   float normal_scale;    /* scales the map's x and y (glTF normalTexture.scale) */
-  clpt_u32 pad[2];
+  clpt_u32 alpha_mode;   /* CLPT_ALPHA_* */
+  float alpha_cutoff;    /* MASK: the surface is there where alpha >= this */
+  float alpha;           /* baseColorFactor's alpha */
+  clpt_u32 pad[3];
 } GpuMaterialTextures;
 
 /* Texture coordinates of a triangle's corners and its material's textures: 32 bytes. */
@@ -359,6 +369,9 @@ typedef struct GpuPixelPass {
   X(GpuMaterialTextures, emission)                                                                \
   X(GpuMaterialTextures, normal)                                                                  \
   X(GpuMaterialTextures, normal_scale)                                                            \
+  X(GpuMaterialTextures, alpha_mode)                                                              \
+  X(GpuMaterialTextures, alpha_cutoff)                                                            \
+  X(GpuMaterialTextures, alpha)                                                                   \
   X(GpuTriangleTexturing, uv0)                                                                    \
   X(GpuTriangleTexturing, uv1)                                                                    \
   X(GpuTriangleTexturing, uv2)                                                                    \
@@ -456,7 +469,7 @@ CLPT_CHECK_SIZE(GpuEnvironment, 64)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
 CLPT_CHECK_SIZE(GpuTexturing, 16)
 CLPT_CHECK_SIZE(GpuTexture, 64)
-CLPT_CHECK_SIZE(GpuMaterialTextures, 32)
+CLPT_CHECK_SIZE(GpuMaterialTextures, 48)
 CLPT_CHECK_SIZE(GpuTriangleTexturing, 32)
 CLPT_CHECK_SIZE(GpuTriangleTangents, 48)
 #undef CLPT_CHECK_SIZE

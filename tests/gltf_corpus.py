@@ -180,6 +180,14 @@ def bad_cases():
               "materials[0].pbrMetallicRoughness.baseColorFactor[0]: must be in [0, 1] (got 1.5)")
     json_case("metallic_below_0", lambda d: d.update(materials=[{"pbrMetallicRoughness": {"metallicFactor": -0.1}}]),
               "materials[0].pbrMetallicRoughness.metallicFactor: must be in [0, 1] (got -0.1)")
+    json_case("alpha_cutoff_negative", lambda d: d.update(materials=[{"alphaMode": "MASK", "alphaCutoff": -0.5}]),
+              "materials[0].alphaCutoff: must be in [0, inf] (got -0.5)")
+    json_case("alpha_cutoff_not_a_number", lambda d: d.update(materials=[{"alphaMode": "MASK", "alphaCutoff": "half"}]),
+              "materials[0].alphaCutoff: must be a number (got \"half\")")
+    json_case("alpha_mode_unknown", lambda d: d.update(materials=[{"alphaMode": "CLIP"}]),
+              "materials[0].alphaMode: 'CLIP' (expected OPAQUE, MASK or BLEND)")
+    json_case("alpha_mode_not_a_string", lambda d: d.update(materials=[{"alphaMode": 1}]),
+              "materials[0].alphaMode: must be a string (got 1)")
 
     def camera(**perspective):
         p = {"yfov": 0.8, "znear": 0.1}

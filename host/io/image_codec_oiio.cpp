@@ -24,7 +24,12 @@ std::string write_image(const std::string& path, const std::string& format_path,
 }
 
 std::string read_image(const std::string& path, clpt::LoadedImage& img) {
-  auto in = OIIO::ImageInput::open(path);
+  // Colours as the file stores them: OIIO would premultiply them by the alpha of a PNG, TGA or
+  // TIFF ("associated" alpha) unless asked not to, and a texture's colour (glTF's base colour,
+  // whose alpha is coverage: docs/gltf.md "Alpha") is not premultiplied.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
   if (!in) return OIIO::geterror();
   const OIIO::ImageSpec& spec = in->spec();
   img.width = spec.width;

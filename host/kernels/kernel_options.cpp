@@ -214,7 +214,10 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
                   : scene.environment->file.empty() ? EnvironmentFeature::Constant
                                                     : EnvironmentFeature::Image;
   const TextureUse textures = texture_use(scene);
-  f.textures = textures.any;
+  // A material cut by its alpha needs the texturing buffer's records (kernels/alpha.cl) even
+  // without an image: the texture code comes with it (with no texel storage compiled).
+  f.textures = textures.any || textures.alpha;
+  f.alpha = textures.alpha;
   f.texel_storages = textures.storages;
   f.texel_channels = textures.channel_counts;
   f.texture_wraps = textures.wraps;
@@ -306,6 +309,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
         << " -DCLPT_TEXEL_CHANNELS=" << features.texel_channels << " -DCLPT_TEXTURE_WRAPS=" << features.texture_wraps
         << " -DCLPT_HAS_NORMAL_MAPS=" << (features.normal_maps ? 1 : 0)
         << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0);
+    if (features.alpha) o << " -DCLPT_HAS_ALPHA=1";
   }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
@@ -418,6 +422,8 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     };
     o << "  textures: "
       << (features.generic ? std::string("compiled (generic kernel: every storage, channel count and wrap mode)")
+          : features.textures && features.texel_storages == 0
+              ? std::string("compiled for the alpha records alone (no image: no texel storage)")
           : features.textures
               ? "compiled (a textured material on a mesh: " + names(features.texel_storages, {"8-bit", "half", "float"}) +
                     " texels; " + names(features.texel_channels, {"1", "2", "3", "4"}) + " channel(s); " +
@@ -425,6 +431,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                     (features.normal_maps ? "compiled" : "left out") + "; emission textures " +
                     (features.emission_textures ? "compiled" : "left out") + ")"
               : std::string("left out (no textured material)"))
+      << "\n";
+    o << "  alpha: "
+      << (features.generic ? "compiled (generic kernel: MASK and BLEND surfaces cut out in every ray query)"
+          : features.alpha ? "compiled (a MASK or BLEND material: its surface cut out in every ray query, shadow rays too)"
+                           : "left out (no MASK or BLEND material)")
       << "\n";
   }
   o << "  camera: "

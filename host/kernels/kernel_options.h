@@ -151,6 +151,10 @@ struct KernelFeatures {
   uint32_t texture_wraps = 7;
   bool normal_maps = true;
   bool emission_textures = true;
+  // CLPT_HAS_ALPHA (kernels/alpha.cl): a mesh's material is MASK or BLEND with its alpha in effect
+  // (scene/device_textures.h, alpha_in_effect); named only when on, and then CLPT_HAS_TEXTURES is
+  // on too (the texturing buffer carries the alpha).
+  bool alpha = true;
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
   // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks
   // lights by power (nee and a scene with an emitting mesh, or generic).

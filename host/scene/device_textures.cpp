@@ -72,6 +72,13 @@ Vec3 any_orthogonal(const Vec3& n) {
 
 }  // namespace
 
+bool alpha_in_effect(const MaterialTextures& t, const std::vector<TextureImage>& images) {
+  if (t.alpha_mode == AlphaMode::Opaque) return false;
+  if (t.alpha_mode == AlphaMode::Mask && t.alpha_cutoff <= 0) return false;  // alpha >= 0 everywhere
+  const bool texture_alpha = t.base_color.used() && images[size_t(t.base_color.image)].channels % 2 == 0;
+  return texture_alpha || t.alpha < (t.alpha_mode == AlphaMode::Mask ? t.alpha_cutoff : 1.0);
+}
+
 TextureUse texture_use(const Scene& scene) {
   TextureUse use;
   const auto uses = [&](const Material& m) {
@@ -87,6 +94,7 @@ TextureUse texture_use(const Scene& scene) {
     }
     use.normal_maps |= m.textures.normal.used();
     use.emission |= m.textures.emission.used();
+    use.alpha |= alpha_in_effect(m.textures, scene.images);
   };
   for (const TriangleMesh& mesh : scene.meshes)
     if (!mesh.triangles.empty()) uses(mesh.material);
@@ -133,7 +141,7 @@ std::vector<std::array<double, 4>> generate_tangents(const TriangleMesh& mesh) {
 
 std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order) {
   const TextureUse use = texture_use(scene);
-  if (!use.any) return {};
+  if (!use.any && !use.alpha) return {};
   std::vector<GpuTexture> textures;
   std::vector<GpuMaterialTextures> materials;
   std::vector<GpuTriangleTexturing> triangles;
@@ -149,8 +157,10 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
     const MaterialTextures& mt = mesh.material.textures;
     uint32_t material = CLPT_TEXTURE_NONE;
     std::vector<std::array<double, 4>> mesh_tangents;
-    if (mt.any() && !mesh.triangles.empty()) {
-      if (mesh.uvs.size() != mesh.positions.size()) {
+    const bool alpha = alpha_in_effect(mt, scene.images);
+    const bool has_uvs = mesh.uvs.size() == mesh.positions.size();
+    if ((mt.any() || alpha) && !mesh.triangles.empty()) {
+      if (mt.any() && !has_uvs) {
         const TextureRef* named = nullptr;
         for (int i = 0; i < 5 && !named; ++i)
           if (refs_of(mt, i)->used()) named = refs_of(mt, i);
@@ -169,6 +179,9 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
         textures.push_back(to_gpu(r, scene.images[size_t(r.image)], uint32_t(image_offset[size_t(r.image)])));
       }
       g.normal_scale = static_cast<float>(mt.normal_scale);
+      g.alpha_mode = static_cast<clpt_u32>(alpha ? mt.alpha_mode : AlphaMode::Opaque);
+      g.alpha_cutoff = static_cast<float>(mt.alpha_cutoff);
+      g.alpha = static_cast<float>(mt.alpha);
       material = uint32_t(materials.size());
       materials.push_back(g);
       if (mt.normal.used()) mesh_tangents = mesh.tangents.size() == mesh.positions.size() ? mesh.tangents : generate_tangents(mesh);
@@ -176,7 +189,7 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
     for (const auto& t : mesh.triangles) {
       GpuTriangleTexturing g{};
       float* uv[3] = {g.uv0, g.uv1, g.uv2};
-      if (material != CLPT_TEXTURE_NONE)
+      if (material != CLPT_TEXTURE_NONE && has_uvs)
         for (int c = 0; c < 3; ++c)
           for (int k = 0; k < 2; ++k) uv[c][k] = static_cast<float>(mesh.uvs[t[c]][size_t(k)]);
       g.material = material;

@@ -1,7 +1,8 @@
 // The scene's textures as the kernels read them (kernels/types.h, GpuTexturing; kernels/texture.cl):
 // one byte buffer holding the texture table, the textured materials, every triangle's texture
 // coordinates, tangents where a material has a normal map (the mesh's, else generated) and the
-// texels, packed 8-bit, half or float with 1 to 4 channels. Empty for a scene without textures.
+// texels, packed 8-bit, half or float with 1 to 4 channels; each textured material's alpha mode.
+// Empty for a scene without textures and without a material whose alpha is in effect.
 #pragma once
 
 #include <array>
@@ -23,12 +24,19 @@ struct TextureUse {
   uint32_t wraps = 0;
   bool normal_maps = false;
   bool emission = false;  // an emission texture (light sampling then reads it too)
+  bool alpha = false;     // a material whose alpha cuts its surface (alpha_in_effect): CLPT_HAS_ALPHA
 };
 TextureUse texture_use(const Scene& scene);
 
+// Whether a material's alpha can make its surface absent anywhere (kernels/alpha.cl): MASK or
+// BLEND, with a base colour texture that has an alpha channel (2 or 4 channels) or a factor that
+// cuts by itself (MASK: alpha < alpha_cutoff; BLEND: alpha < 1); never for a MASK cutoff <= 0.
+// Other materials render as OPAQUE ones (the same image, no alpha code).
+bool alpha_in_effect(const MaterialTextures& t, const std::vector<TextureImage>& images);
+
 // The texturing buffer for the scene's triangles in the order `triangle_order` gives (entry i of
 // the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh);
-// empty when no material is textured. Throws Error(BadScene) naming the mesh and the material's
+// empty when no material is textured or cut by its alpha. Throws Error(BadScene) naming the mesh and the material's
 // key when a textured material's mesh has no texture coordinates, or when the buffer would need
 // more than 2^32 bytes (the offsets are 32-bit).
 std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order);

@@ -310,6 +310,22 @@ void check_images(const json& root) {
   }
 }
 
+// A material's alpha properties, which tinygltf reads with defaults (OPAQUE, 0.5) where one has
+// the wrong type: alphaMode must be a string and alphaCutoff a number (its range and alphaMode's
+// words: gltf_material.cpp).
+void check_material_alpha(const json& root) {
+  const json* materials = array_member(root, "materials");
+  if (!materials) return;
+  for (size_t i = 0; i < materials->size(); ++i) {
+    const std::string element = indexed("materials", i);
+    const json& material = object_at(*materials, i, element);
+    if (material.contains("alphaMode") && !material["alphaMode"].is_string())
+      gltf_fail(element + ".alphaMode", "must be a string (got " + material["alphaMode"].dump().substr(0, 40) + ")");
+    if (material.contains("alphaCutoff") && !material["alphaCutoff"].is_number())
+      gltf_fail(element + ".alphaCutoff", "must be a number (got " + material["alphaCutoff"].dump().substr(0, 40) + ")");
+  }
+}
+
 // The index and offset properties tinygltf reads with defaults: where one has the wrong type or
 // a negative value tinygltf keeps its default (-1 or 0) silently, and it narrows indices to int,
 // so each present index must be an integer in [0, 2^31 - 1] and each offset a non-negative
@@ -457,6 +473,7 @@ GltfDocument parse_gltf_document(std::string_view bytes, const std::string& path
   check_buffer_views(root, buffers);
   check_images(root);
   check_indices(root);
+  check_material_alpha(root);
   document.model = run_tinygltf(bytes, glb, chunks, buffers);
   return document;
 }

@@ -240,6 +240,11 @@ Material convert(const tinygltf::Material& m, const std::string& element) {
   if (m.alphaMode != "OPAQUE" && m.alphaMode != "MASK" && m.alphaMode != "BLEND")
     gltf_fail(element + ".alphaMode", "'" + m.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
   require_in(m.alphaCutoff, 0, std::numeric_limits<double>::infinity(), element + ".alphaCutoff");
+  // Alpha (docs/gltf.md, "Alpha"): baseColorFactor's alpha, times the base colour texture's alpha
+  // channel on the device; OPAQUE ignores it, as the specification says.
+  out.textures.alpha_mode = m.alphaMode == "MASK" ? AlphaMode::Mask : m.alphaMode == "BLEND" ? AlphaMode::Blend : AlphaMode::Opaque;
+  out.textures.alpha = pbr.baseColorFactor[3];
+  out.textures.alpha_cutoff = m.alphaCutoff;
   out.double_sided = m.doubleSided;
   read_extensions(m, element, out);
   return out;
@@ -257,20 +262,17 @@ std::string joined(const std::vector<std::string>& names) {
 std::vector<Material> convert_materials(const tinygltf::Model& model, const std::string& path,
                                         std::vector<TextureImage>& images, std::vector<std::string>& warnings) {
   std::vector<Material> out;
-  std::vector<std::string> transparent, occluded;
+  std::vector<std::string> occluded;
   ImageCache cache{model, path, images, {}};
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const std::string element = "materials[" + std::to_string(i) + "]";
     const tinygltf::Material& m = model.materials[i];
     out.push_back(convert(m, element));
     read_textures(cache, m, element, out.back(), warnings);
-    if (m.alphaMode != "OPAQUE") transparent.push_back(element);
     if (m.occlusionTexture.index >= 0) occluded.push_back(element);
   }
   if (!occluded.empty())
     warnings.push_back(joined(occluded) + ": occlusionTexture ignored (a path tracer finds occlusion itself)");
-  if (!transparent.empty())
-    warnings.push_back(joined(transparent) + ": alphaMode MASK and BLEND are not rendered yet; these surfaces render opaque");
   return out;
 }
 

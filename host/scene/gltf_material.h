@@ -1,8 +1,8 @@
 // glTF materials (glTF 2.0 section 3.9) as clpt's MaterialType::Pbr: the metallic-roughness
 // factors, emissiveFactor x KHR_materials_emissive_strength, KHR_materials_ior,
 // KHR_materials_transmission and KHR_materials_volume, doubleSided, and the textures below.
-// Alpha is not rendered (a warning lists the materials whose alpha would matter), nor is the
-// occlusion texture (a path tracer computes occlusion).
+// alphaMode, alphaCutoff and baseColorFactor's alpha (MaterialTextures; rendered as coverage,
+// kernels/alpha.cl). The occlusion texture is not read (a path tracer computes occlusion).
 #pragma once
 
 #include "scene/tinygltf_config.h"

@@ -18,6 +18,8 @@ enum class TexelStorage : uint32_t { U8 = 0, Half = 1, Float = 2 };
 enum class TextureWrap : uint32_t { Repeat = 0, Clamp = 1, Mirror = 2 };
 enum class TextureFilter : uint32_t { Bilinear = 0, Nearest = 1 };
 enum class ColorSpace : uint32_t { Srgb = 0, Linear = 1 };
+// glTF alphaMode; values equal CLPT_ALPHA_* (kernels/types.h, kernels/alpha.cl).
+enum class AlphaMode : uint32_t { Opaque = 0, Mask = 1, Blend = 2 };
 
 const char* texel_storage_name(TexelStorage storage);  // "8-bit", "half", "float"
 const char* texture_wrap_name(TextureWrap wrap);       // "repeat", "clamp", "mirror"
@@ -69,6 +71,13 @@ struct MaterialTextures {
   TextureRef emission;
   TextureRef normal;
   double normal_scale = 1;
+  // glTF alphaMode (docs/gltf.md, "Alpha"): the alpha is `alpha` (baseColorFactor[3]) x the base
+  // colour texture's alpha channel (1 without one). MASK: the surface is there where alpha >=
+  // alpha_cutoff; BLEND: there with probability alpha (coverage); OPAQUE ignores alpha. Carried
+  // to the device in the texturing buffer (a MASK or BLEND material has a record there).
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  double alpha = 1;
+  double alpha_cutoff = 0.5;
   bool any() const { return base_color.used() || metallic.used() || roughness.used() || emission.used() || normal.used(); }
 };
 

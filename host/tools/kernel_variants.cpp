@@ -189,7 +189,9 @@ TextureImage pattern_image(const std::string& name, int w, int h, int channels, 
 // colour (repeat, bilinear) and a half normal map (clamp in u) on every textured variant; with
 // `pbr` (the variant's pbr dimension) the tile is a Pbr material and adds a half two-channel
 // metallic-roughness map and a float one-channel emission map (mirror, nearest): every storage,
-// four channel counts, every wrap mode, both filters, normal maps and emission textures.
+// four channel counts, every wrap mode, both filters, normal maps and emission textures. The tile's
+// alpha (the base colour's alpha channel, kernels/alpha.cl) is in effect: MASK, or BLEND with `pbr`,
+// so every textured variant compiles CLPT_HAS_ALPHA and cuts the tile in its ray queries.
 void add_textured_tile(Scene& scene, bool pbr) {
   TriangleMesh m;
   m.name = "variant_tile";
@@ -204,6 +206,8 @@ void add_textured_tile(Scene& scene, bool pbr) {
   t.normal.image = first + 1;
   t.normal.wrap_u = TextureWrap::Clamp;
   t.normal_scale = 0.5;
+  t.alpha_mode = pbr ? AlphaMode::Blend : AlphaMode::Mask;
+  t.alpha = 0.9;
   m.material.type = MaterialType::Lambertian;
   m.material.reflectance = {0.8, 0.8, 0.8};
   if (pbr) {

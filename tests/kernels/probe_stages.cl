@@ -1,5 +1,7 @@
 /* probe_stages.cl: thin kernels that call the renderer's own stage functions on inputs from the
- * host, so unit tests check the device code itself (not a host copy of it). */
+ * host, so unit tests check the device code itself (not a host copy of it). The scene probe binds
+ * no texturing buffer, so no alpha test is compiled (alpha.cl). */
+#define CLPT_HAS_ALPHA 0
 #include "types.h"
 #include "maths.cl"
 #include "rng.cl"
@@ -85,9 +87,9 @@ __kernel void probe_scene_hit(__global const GpuSphere* spheres, __global const 
       }
     }
   } else {
-    hit = scene_closest_hit(&scene, &params, o, d, -1);
-    near_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].x, -1, -1);
-    far_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].y, -1, -1);
+    hit = scene_closest_hit(&scene, &params, o, d, -1, 0u);
+    near_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].x, -1, -1, 0u);
+    far_blocked = scene_hierarchy_occluded(&scene, &params, o, d, shadow_t[i].y, -1, -1, 0u);
   }
   out[2 * i] = (float4)(hit.t, (float)hit.sphere, (float)hit.triangle, 0.0f);
   out[2 * i + 1] = (float4)(near_blocked ? 1.0f : 0.0f, far_blocked ? 1.0f : 0.0f, 0.0f, 0.0f);
