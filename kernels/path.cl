@@ -427,9 +427,18 @@ typedef struct ShadowQuery {
   real t_max;
   int skip;
   int skip_triangle;
-  uint alpha_seed; /* alpha.cl: the shadow ray's coverage decisions (0 without CLPT_HAS_ALPHA) */
+#if CLPT_HAS_ALPHA
+  uint alpha_seed; /* alpha.cl: the shadow ray's coverage decisions */
+#endif
   CLPT_ABI_PAD(int, 1)
 } ShadowQuery;
+
+/* The shadow ray's coverage seed (alpha.cl), 0 where no alpha is compiled (the field is absent). */
+#if CLPT_HAS_ALPHA
+#define shadow_alpha_seed(q) ((q)->alpha_seed)
+#else
+#define shadow_alpha_seed(q) 0u
+#endif
 
 CLPT_INLINE ShadowQuery no_shadow_query(void) {
   ShadowQuery q;
@@ -439,7 +448,9 @@ CLPT_INLINE ShadowQuery no_shadow_query(void) {
   q.t_max = (real)0;
   q.skip = -1;
   q.skip_triangle = -1;
+#if CLPT_HAS_ALPHA
   q.alpha_seed = 0u;
+#endif
   return q;
 }
 
@@ -488,7 +499,9 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
   q->t_max = near_light;
   q->skip = skip;
   q->skip_triangle = skip_triangle;
+#if CLPT_HAS_ALPHA
   q->alpha_seed = path_alpha_seed(params, path, CLPT_ALPHA_STREAM_SHADOW);
+#endif
   *segments += 1u;
   /* Visible: the sampled point faces the vertex (light_sample) and the first thing along the ray
    * is the emitter, at the sampled point's distance (nothing in between): the loop's spheres
@@ -505,7 +518,7 @@ CLPT_INLINE Vec3 next_event(const PathState* path, const SceneBuffers* scene, co
 #if defined(CLPT_TRIANGLE_COUNT) && CLPT_TRIANGLE_COUNT > 0
   /* A small mesh's triangles in their loop (triangle_loop.cl): none before the light either. */
   loop_clear = loop_clear & !triangle_loop_blocked(scene->triangles, scene->texturing, origin, shadow_direction, near_light,
-                                                   skip_triangle, q->alpha_seed);
+                                                   skip_triangle, shadow_alpha_seed(q));
 #endif
   /* int operands and `&`, not `&&`: f_cos's reads behind a short-circuit would be masked loads
    * (maths.cl, v3_is_zero). */
@@ -726,7 +739,7 @@ CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers
 CLPT_INLINE bool shadow_query_blocked(const ShadowQuery* q, const SceneBuffers* scene, const GpuRenderParams* params) {
   return !v3_is_zero(q->light) &&
          scene_hierarchy_occluded(scene, params, q->origin, q->direction, q->t_max, q->skip, q->skip_triangle,
-                                  q->alpha_seed);
+                                  shadow_alpha_seed(q));
 }
 
 /* Adds the shadow ray's light unless the hierarchy blocks it. */
