@@ -281,7 +281,7 @@ CLPT_INLINE __global const GpuTriangleTexturing* triangle_texturing(__global con
  * CLPT_TEXTURE_NONE: for an untextured triangle, for no triangle (triangle < 0), and for every
  * triangle when the buffer holds no texturing at all (the zeroed header of a scene without
  * textures: its triangles section is at offset 0, which a packed buffer never uses). Only the
- * generic kernel meets that header; reading a record from it would run past its 16 bytes. */
+ * generic kernel meets that header; reading a record from it would run past its 32 bytes. */
 CLPT_INLINE uint triangle_texture_material(__global const uchar* texturing, int triangle) {
   __global const GpuTexturing* header = (__global const GpuTexturing*)texturing;
   if (triangle < 0 || header->triangles == 0u) return CLPT_TEXTURE_NONE;

@@ -129,11 +129,14 @@ typedef struct GpuTriangleShading {
 #define CLPT_TEXTURE_SRGB 1u    /* GpuTexture.flags: 8-bit texels are sRGB-encoded (decoded per texel) */
 #define CLPT_TEXTURE_NEAREST 2u /* GpuTexture.flags: nearest texel, else bilinear */
 
-typedef struct GpuTexturing { /* 16 bytes: byte offsets of the sections */
+typedef struct GpuTexturing { /* 32 bytes: byte offsets of the sections */
   clpt_u32 textures;  /* GpuTexture[] */
   clpt_u32 materials; /* GpuMaterialTextures[] */
   clpt_u32 triangles; /* GpuTriangleTexturing[], one per triangle */
   clpt_u32 tangents;  /* GpuTriangleTangents[], one per triangle; 0: none */
+  clpt_u32 colors;    /* per-triangle corner colours (glTF COLOR_0); 0: none */
+  clpt_u32 spheres;   /* per-sphere textured-material indices; 0: none */
+  clpt_u32 pad[2];
 } GpuTexturing;
 
 /* One use of an image: 64 bytes. Mesh coordinates (u, v) (OBJ's convention: (0, 0) at the
@@ -353,6 +356,8 @@ typedef struct GpuPixelPass {
   X(GpuTexturing, materials)                                                                      \
   X(GpuTexturing, triangles)                                                                      \
   X(GpuTexturing, tangents)                                                                       \
+  X(GpuTexturing, colors)                                                                         \
+  X(GpuTexturing, spheres)                                                                        \
   X(GpuTexture, texels)                                                                           \
   X(GpuTexture, width)                                                                            \
   X(GpuTexture, height)                                                                           \
@@ -467,7 +472,7 @@ CLPT_CHECK_SIZE(GpuRenderParams, 120)
 CLPT_CHECK_SIZE(GpuSampleSlot, 8)
 CLPT_CHECK_SIZE(GpuEnvironment, 64)
 CLPT_CHECK_SIZE(GpuPixelPass, 32)
-CLPT_CHECK_SIZE(GpuTexturing, 16)
+CLPT_CHECK_SIZE(GpuTexturing, 32)
 CLPT_CHECK_SIZE(GpuTexture, 64)
 CLPT_CHECK_SIZE(GpuMaterialTextures, 48)
 CLPT_CHECK_SIZE(GpuTriangleTexturing, 32)
