@@ -23,6 +23,7 @@
 #include "intersect.cl"
 #include "triangle.cl"
 #include "bvh.cl"
+#include "texture.cl"
 
 #ifndef CLPT_HAS_TRIANGLE_LIGHTS
 #define CLPT_HAS_TRIANGLE_LIGHTS 1
@@ -52,7 +53,11 @@
 /* Lights picked by power from the alias table (else uniformly over the sphere caps). A sampled
  * environment needs the alias pick's LightSample (emission, target); the host fills the table
  * uniformly when there are only sphere lights, so their pick is the same. */
-#define CLPT_LIGHT_PICK_BY_POWER (CLPT_HAS_TRIANGLE_LIGHTS || CLPT_HAS_PUNCTUAL_LIGHTS || CLPT_HAS_ENVIRONMENT == 1)
+/* An emission texture on a sphere (texture.cl) scales a sampled cap point's radiance, which the
+ * alias pick's LightSample carries (emission): such a kernel takes that pick. */
+#define CLPT_SPHERE_EMISSION_TEXTURES (CLPT_HAS_SPHERE_TEXTURES && CLPT_HAS_EMISSION_TEXTURES)
+#define CLPT_LIGHT_PICK_BY_POWER \
+  (CLPT_HAS_TRIANGLE_LIGHTS || CLPT_HAS_PUNCTUAL_LIGHTS || CLPT_HAS_ENVIRONMENT == 1 || CLPT_SPHERE_EMISSION_TEXTURES)
 /* How far a directional light's shadow ray looks, world units: below CLPT_NO_HIT (maths.cl), and
  * small enough that its square stays a finite float (next_event forms the ray's length). */
 #define CLPT_DIRECTIONAL_DISTANCE ((real)1e15f)
@@ -98,9 +103,10 @@ CLPT_INLINE real light_pick_pdf(real distance, real cos_light, real area, real p
 
 /* A point uniformly by area on the cap of sphere light `light` for draws u0, u1, seen from x:
  * direction and distance filled, pdf left to the caller; *cos_light is the point's normal
- * against the direction, *facing whether that side can be seen from x. */
+ * against the direction, *facing whether that side can be seen from x, *point_normal the point's
+ * outward normal. */
 CLPT_INLINE LightSample sphere_cap_sample(__global const GpuLight* light, __global const GpuSphere* spheres, Vec3 x,
-                                          Uniform4 u, real* cos_light, bool* facing) {
+                                          Uniform4 u, real* cos_light, bool* facing, Vec3* point_normal) {
   __global const GpuSphere* sphere = &spheres[light->sphere];
   /* A point at polar angle theta from the cap axis, 1 - cos(theta) uniform in [0, one_minus_cos_cap]
    * (uniform by area on a sphere); sin(theta) from v (2 - v) keeps precision for tiny caps. */
@@ -117,6 +123,7 @@ CLPT_INLINE LightSample sphere_cap_sample(__global const GpuLight* light, __glob
   s.distance = clpt_sqrt(v3_dot(to_point, to_point));
   s.direction = v3_scale(to_point, (real)1 / s.distance);
   *cos_light = v3_dot(normal, s.direction);
+  *point_normal = normal;
   /* Only the side facing x can be seen from x: from outside the sphere the point must face back
    * along the ray, from inside it must face along it. Outside means |c - x|^2 - r^2 > 0, formed as
    * intersect.cl forms c' (no r^2 term). The shadow ray's distance cannot tell the sides apart:
@@ -175,7 +182,8 @@ CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count
   __global const GpuLight* light = &scene->lights[index];
   real cos_light;
   bool facing;
-  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing);
+  Vec3 point_normal;
+  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing, &point_normal);
   s.pdf = light_solid_angle_pdf(s.distance, cos_light, light->cap_area, light_count);
   s.pdf = facing && is_finite_real(s.pdf) ? s.pdf : (real)0;
   return s;
@@ -194,10 +202,15 @@ CLPT_INLINE LightSample light_sample(const SceneBuffers* scene, uint light_count
 
   real cos_light;
   bool facing;
-  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing);
+  Vec3 point_normal;
+  LightSample s = sphere_cap_sample(light, scene->spheres, x, u, &cos_light, &facing, &point_normal);
   s.triangle = -1;
   s.delta = 0;
   s.emission = v3_load_global(scene->spheres[light->sphere].material.emission);
+#if CLPT_SPHERE_EMISSION_TEXTURES
+  /* The sampled point's emission texture, as a BSDF hit there reads it (path.cl, apply_textures). */
+  s.emission = v3_mul(s.emission, sphere_emission_scale(scene->texturing, (int)light->sphere, point_normal));
+#endif
   s.target = v3_add_scaled(x, s.direction, s.distance);
 
 #if CLPT_HAS_TRIANGLE_LIGHTS

@@ -346,21 +346,45 @@ CLPT_INLINE SurfacePoint surface_point_of(const SceneBuffers* scene, Hit hit, Ve
 }
 
 #if CLPT_HAS_TEXTURES
-/* The hit triangle's textures (texture.cl) applied to its material and shading normal: each
+/* The hit's textured-material index (CLPT_TEXTURE_NONE: none) and its texture coordinates *u, *v:
+ * a triangle's interpolated ones, or on a sphere the spherical mapping at its outward normal
+ * (texture.cl, sphere_uv; CLPT_HAS_SPHERE_TEXTURES). */
+CLPT_INLINE uint hit_texture_material(__global const uchar* texturing, int triangle, int sphere, const SurfacePoint* s,
+                                      float* u, float* v) {
+  uint material = CLPT_TEXTURE_NONE;
+  *u = 0.0f;
+  *v = 0.0f;
+#if CLPT_HAS_TRIANGLES
+  material = triangle_texture_material(texturing, triangle);
+  if (material != CLPT_TEXTURE_NONE) {
+    const real b1 = s->triangle.b1, b2 = s->triangle.b2;
+    triangle_uv(triangle_texturing(texturing, (uint)triangle), (float)((real)1 - b1 - b2), (float)b1, (float)b2, u, v);
+    return material;
+  }
+#endif
+#if CLPT_HAS_SPHERE_TEXTURES
+  material = sphere_texture_material(texturing, triangle < 0 ? sphere : -1);
+  if (material != CLPT_TEXTURE_NONE) sphere_uv(s->normal, u, v);
+#else
+  (void)sphere;
+  (void)s;
+#endif
+  return material;
+}
+
+/* The hit's textures (texture.cl) applied to its material and shading normal: each
  * textured parameter is its factor times the lookup (colours and metallic/roughness clamped to
  * [0, 1], emission to >= 0). A normal map's normal is used only when the arriving ray sees it from
  * the same side as the geometric normal (else the unmapped shading normal stays), and
  * leaves_consistently then drops any direction on opposite sides of it and of the geometric
  * normal: no light leaks through the surface (docs/textures.md). */
-CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, Vec3 d, SurfacePoint* s, SurfaceMaterial* m) {
+CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sphere, Vec3 d, SurfacePoint* s,
+                                SurfaceMaterial* m) {
   __global const uchar* texturing = scene->texturing;
-  const uint material = triangle_texture_material(texturing, triangle);
-  if (material == CLPT_TEXTURE_NONE) return;
-  __global const GpuTriangleTexturing* r = triangle_texturing(texturing, (uint)triangle);
-  __global const GpuMaterialTextures* mt = material_textures(texturing, material);
-  const real b1 = s->triangle.b1, b2 = s->triangle.b2;
   float u, v;
-  triangle_uv(r, (float)((real)1 - b1 - b2), (float)b1, (float)b2, &u, &v);
+  const uint material = hit_texture_material(texturing, triangle, sphere, s, &u, &v);
+  if (material == CLPT_TEXTURE_NONE) return;
+  __global const GpuMaterialTextures* mt = material_textures(texturing, material);
   if (mt->base_color != CLPT_TEXTURE_NONE) {
     const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v);
     m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
@@ -381,8 +405,9 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, Vec3 d,
     m->emission = v3_mul(m->emission, v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f)));
   }
 #endif
-#if CLPT_HAS_NORMAL_MAPS
+#if CLPT_HAS_NORMAL_MAPS && CLPT_HAS_TRIANGLES /* triangles only: a sphere's record has no normal map */
   if (mt->normal != CLPT_TEXTURE_NONE) {
+    const real b1 = s->triangle.b1, b2 = s->triangle.b2;
     const Vec3 mapped = normal_mapped(texturing, (uint)triangle, mt->normal, mt->normal_scale, u, v, b1, b2, s->normal);
     const bool consistent = (v3_dot(d, mapped) < (real)0) == (v3_dot(d, s->triangle.geometric) < (real)0);
     s->normal = v3_select(consistent, mapped, s->normal);
@@ -624,7 +649,7 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   const real t = missed ? (real)0 : hit.t;
   SurfacePoint surface = surface_point_of(scene, hit, path->origin, path->direction, t);
 #if CLPT_HAS_TEXTURES
-  apply_textures(scene, missed ? -1 : hit.triangle, path->direction, &surface, &material);
+  apply_textures(scene, missed ? -1 : hit.triangle, missed ? -1 : hit.sphere, path->direction, &surface, &material);
 #endif
   const Vec3 normal = surface.normal;
   /* The sphere the path stands on, or -1 on a triangle (a sphere a new ray may skip). */

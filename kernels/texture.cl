@@ -16,7 +16,9 @@
  * 1 << (n - 1) of each channel count), CLPT_TEXTURE_WRAPS (bit 1 << CLPT_WRAP_*),
  * CLPT_HAS_NORMAL_MAPS and CLPT_HAS_EMISSION_TEXTURES. A specialised kernel names them only when
  * its scene has textures: absent, they are off there (CLPT_ESTIMATOR fixed) and on in the generic
- * kernel. */
+ * kernel. CLPT_HAS_SPHERE_TEXTURES (a textured material on a sphere: the GpuTexturing.spheres
+ * section, read at the spherical mapping's coordinates, sphere_uv) is named only when on, and is
+ * on in the generic kernel. */
 #ifndef CLPT_TEXTURE_CL
 #define CLPT_TEXTURE_CL
 
@@ -44,6 +46,16 @@
 #endif
 #ifndef CLPT_TEXTURE_WRAPS
 #define CLPT_TEXTURE_WRAPS 7
+#endif
+#ifndef CLPT_HAS_SPHERE_TEXTURES
+#ifdef CLPT_ESTIMATOR
+#define CLPT_HAS_SPHERE_TEXTURES 0
+#else
+#define CLPT_HAS_SPHERE_TEXTURES CLPT_HAS_TEXTURES
+#endif
+#endif
+#if CLPT_HAS_SPHERE_TEXTURES && !CLPT_HAS_TEXTURES
+#error "CLPT_HAS_SPHERE_TEXTURES needs the texturing buffer (CLPT_HAS_TEXTURES)"
 #endif
 
 #if CLPT_HAS_TEXTURES
@@ -344,6 +356,48 @@ CLPT_INLINE Vec3 normal_mapped(__global const uchar* texturing, uint triangle, u
   return v3_select(usable, v3_scale(m, (real)1 / clpt_sqrt(usable ? m2 : (real)1)), n);
 }
 #endif
+
+#if CLPT_HAS_SPHERE_TEXTURES
+/* A sphere's textured-material index (GpuTexturing.spheres, in the sphere buffer's order), or
+ * CLPT_TEXTURE_NONE: for an untextured sphere, for no sphere (sphere < 0), and for every sphere
+ * when the buffer has no sphere section (offset 0: no sphere is textured, or no texturing at all). */
+CLPT_INLINE uint sphere_texture_material(__global const uchar* texturing, int sphere) {
+  __global const GpuTexturing* header = (__global const GpuTexturing*)texturing;
+  if (sphere < 0 || header->spheres == 0u) return CLPT_TEXTURE_NONE;
+  return ((__global const uint*)(texturing + header->spheres))[sphere];
+}
+
+/* The spherical mapping (docs/textures.md) at the unit outward normal n = (p - c) / r, in the
+ * sphere's own frame (+Y up): u = 1/2 - atan2(n.x, -n.z) / (2 pi), v = 1 - acos(n.y) / pi, Blender's
+ * sphere projection (Cycles' map_to_sphere) with Blender's +Z up as +Y and its +Y as -Z (what its
+ * glTF exchange maps): the image's centre faces -Z, its left and right edges meet at +Z, its top row
+ * is the north pole (+Y), and it reads unmirrored from outside. host/scene/texture.cpp,
+ * sphere_texture_coordinates, is the same in double. */
+CLPT_INLINE void sphere_uv(Vec3 n, float* u, float* v) {
+  const float x = (float)n.x, y = (float)n.y, z = (float)n.z;
+  *u = 0.5f - atan2(x, -z) * (0.5f * M_1_PI_F);
+  *v = 1.0f - acos(clamp(y, -1.0f, 1.0f)) * M_1_PI_F;
+}
+
+#if CLPT_HAS_EMISSION_TEXTURES
+/* A sphere's emission factor at the point with outward normal n: its emission texture's RGB, or 1
+ * (light.cl: a sampled point of a sphere light, as path.cl scales a BSDF hit's emission). */
+CLPT_INLINE Vec3 sphere_emission_scale(__global const uchar* texturing, int sphere, Vec3 n) {
+  const uint material = sphere_texture_material(texturing, sphere);
+  Vec3 s = v3_splat((real)1);
+  if (material != CLPT_TEXTURE_NONE) {
+    const uint index = material_textures(texturing, material)->emission;
+    if (index != CLPT_TEXTURE_NONE) {
+      float u, v;
+      sphere_uv(n, &u, &v);
+      const TexelRgba c = texture_lookup(texturing, index, u, v);
+      s = v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f));
+    }
+  }
+  return s;
+}
+#endif
+#endif /* CLPT_HAS_SPHERE_TEXTURES */
 
 #endif /* CLPT_HAS_TEXTURES */
 #endif

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Bad texture input through the real `clpt render` (docs/textures.md): a missing, empty,
-# unreadable, truncated or absurdly large image, a directory named as a texture, a texture on a
-# sphere or on a mesh (inline, OBJ or PLY) without texture coordinates, a bad wrap word, a glTF
+# unreadable, truncated or absurdly large image, a directory named as a texture, a normal map on a
+# sphere, a sphere's missing image, a texture on a mesh (inline, OBJ or PLY) without texture coordinates, a bad wrap word, a glTF
 # image that is not there. Each must exit 3 (a bad scene), print a message that starts with the
 # file and key (or glTF element) and names the image, and leave no output. (The line numbers are
 # those of mesh_scene below.)
@@ -105,9 +105,19 @@ look_at = [0, 0, 0]
 [[sphere]]
 center = [0, 0, 0]
 radius = 1
-material = { type = "emitter", emission = { texture = "good.png" } }
+material = { type = "lambertian", reflectance = { texture = "good.png" }, normal_map = { texture = "good.png" } }
 TOML
-expect_refused "clpt: error: $work/sphere.toml:7:" "sphere[0].material.emission" "$work/sphere.toml"
+expect_refused "clpt: error: $work/sphere.toml:7:" "sphere[0].material.normal_map: sphere 'sphere[0]'" "$work/sphere.toml"
+cat >"$work/sphere_missing.toml" <<TOML
+[camera]
+position = [0, 0, 5]
+look_at = [0, 0, 0]
+[[sphere]]
+center = [0, 0, 0]
+radius = 1
+material = { type = "emitter", emission = { texture = "missing.png" } }
+TOML
+expect_refused "clpt: error: $work/sphere_missing.toml:7:" "sphere[0].material.emission.texture" "$work/sphere_missing.toml"
 
 # A glTF file whose base colour image is not there.
 python3 - "$work/missing.gltf" <<'PY'

@@ -223,6 +223,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.texture_wraps = textures.wraps;
   f.normal_maps = textures.normal_maps;
   f.emission_textures = textures.emission;
+  f.sphere_textures = textures.spheres;
   f.spheres_in_bvh = spheres_in_hierarchy(scene);
   const std::vector<bool> in_loop = loop_spheres(scene);
   f.sphere_count = static_cast<int>(std::count(in_loop.begin(), in_loop.end(), true));
@@ -309,6 +310,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
         << " -DCLPT_TEXEL_CHANNELS=" << features.texel_channels << " -DCLPT_TEXTURE_WRAPS=" << features.texture_wraps
         << " -DCLPT_HAS_NORMAL_MAPS=" << (features.normal_maps ? 1 : 0)
         << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0);
+    if (features.textures && features.sphere_textures) o << " -DCLPT_HAS_SPHERE_TEXTURES=1";
     if (features.alpha) o << " -DCLPT_HAS_ALPHA=1";
   }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
@@ -425,7 +427,9 @@ std::string explain_kernel_options(const KernelFeatures& features) {
           : features.textures && features.texel_storages == 0
               ? std::string("compiled for the alpha records alone (no image: no texel storage)")
           : features.textures
-              ? "compiled (a textured material on a mesh: " + names(features.texel_storages, {"8-bit", "half", "float"}) +
+              ? "compiled (a textured material on a " +
+                    std::string(features.sphere_textures ? "mesh or sphere; spheres by the spherical mapping: " : "mesh: ") +
+                    names(features.texel_storages, {"8-bit", "half", "float"}) +
                     " texels; " + names(features.texel_channels, {"1", "2", "3", "4"}) + " channel(s); " +
                     names(features.texture_wraps, {"repeat", "clamp", "mirror"}) + " wrap; normal maps " +
                     (features.normal_maps ? "compiled" : "left out") + "; emission textures " +

@@ -151,6 +151,9 @@ struct KernelFeatures {
   uint32_t texture_wraps = 7;
   bool normal_maps = true;
   bool emission_textures = true;
+  // CLPT_HAS_SPHERE_TEXTURES: a sphere's material is textured (the spherical mapping,
+  // docs/textures.md); named only when on, with CLPT_HAS_TEXTURES.
+  bool sphere_textures = true;
   // CLPT_HAS_ALPHA (kernels/alpha.cl): a mesh's material is MASK or BLEND with its alpha in effect
   // (scene/device_textures.h, alpha_in_effect); named only when on, and then CLPT_HAS_TEXTURES is
   // on too (the texturing buffer carries the alpha).

@@ -292,7 +292,6 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   out.bvh = build_bvh_with(builder, prims);
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
-  out.texturing = pack_texturing(scene, out.bvh.triangle_order);
   if (spheres_in_bvh) {
     sphere_order.insert(sphere_order.end(), out.bvh.sphere_order.begin(), out.bvh.sphere_order.end());
     for (GpuBvhNode& node : out.bvh.nodes)
@@ -302,6 +301,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
     for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);
     for (GpuLight& light : out.lights) light.sphere = new_index[light.sphere];
   }
+  out.texturing = pack_texturing(scene, out.bvh.triangle_order, sphere_order);
   out.scene_radius = bounding_radius(scene);
   std::vector<GpuLight> punctual;
   for (const PunctualLight& l : scene.lights) punctual.push_back(to_gpu(l, cam.position));

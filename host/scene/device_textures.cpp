@@ -98,6 +98,10 @@ TextureUse texture_use(const Scene& scene) {
   };
   for (const TriangleMesh& mesh : scene.meshes)
     if (!mesh.triangles.empty()) uses(mesh.material);
+  for (const Sphere& sphere : scene.spheres) {
+    use.spheres |= sphere.material.textures.any();
+    if (sphere.material.textures.any()) uses(sphere.material);
+  }
   return use;
 }
 
@@ -139,7 +143,8 @@ std::vector<std::array<double, 4>> generate_tangents(const TriangleMesh& mesh) {
   return out;
 }
 
-std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order) {
+std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order,
+                                    const std::vector<uint32_t>& sphere_order) {
   const TextureUse use = texture_use(scene);
   if (!use.any && !use.alpha) return {};
   std::vector<GpuTexture> textures;
@@ -153,6 +158,24 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
     image_offset[i] = texel_bytes;
     texel_bytes = aligned(texel_bytes + scene.images[i].device_bytes());
   }
+  // A textured material's record and its textures' table entries; its index.
+  const auto add_material = [&](const MaterialTextures& mt, bool alpha) {
+    GpuMaterialTextures g{};
+    clpt_u32* slots[5] = {&g.base_color, &g.metallic, &g.roughness, &g.emission, &g.normal};
+    for (int i = 0; i < 5; ++i) {
+      const TextureRef& r = *refs_of(mt, i);
+      *slots[i] = CLPT_TEXTURE_NONE;
+      if (!r.used()) continue;
+      *slots[i] = uint32_t(textures.size());
+      textures.push_back(to_gpu(r, scene.images[size_t(r.image)], uint32_t(image_offset[size_t(r.image)])));
+    }
+    g.normal_scale = static_cast<float>(mt.normal_scale);
+    g.alpha_mode = static_cast<clpt_u32>(alpha ? mt.alpha_mode : AlphaMode::Opaque);
+    g.alpha_cutoff = static_cast<float>(mt.alpha_cutoff);
+    g.alpha = static_cast<float>(mt.alpha);
+    materials.push_back(g);
+    return uint32_t(materials.size() - 1);
+  };
   for (const TriangleMesh& mesh : scene.meshes) {
     const MaterialTextures& mt = mesh.material.textures;
     uint32_t material = CLPT_TEXTURE_NONE;
@@ -169,21 +192,7 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
                                             "' has no texture coordinates, and its material is textured (" +
                                             named->where + ")");
       }
-      GpuMaterialTextures g{};
-      clpt_u32* slots[5] = {&g.base_color, &g.metallic, &g.roughness, &g.emission, &g.normal};
-      for (int i = 0; i < 5; ++i) {
-        const TextureRef& r = *refs_of(mt, i);
-        *slots[i] = CLPT_TEXTURE_NONE;
-        if (!r.used()) continue;
-        *slots[i] = uint32_t(textures.size());
-        textures.push_back(to_gpu(r, scene.images[size_t(r.image)], uint32_t(image_offset[size_t(r.image)])));
-      }
-      g.normal_scale = static_cast<float>(mt.normal_scale);
-      g.alpha_mode = static_cast<clpt_u32>(alpha ? mt.alpha_mode : AlphaMode::Opaque);
-      g.alpha_cutoff = static_cast<float>(mt.alpha_cutoff);
-      g.alpha = static_cast<float>(mt.alpha);
-      material = uint32_t(materials.size());
-      materials.push_back(g);
+      material = add_material(mt, alpha);
       if (mt.normal.used()) mesh_tangents = mesh.tangents.size() == mesh.positions.size() ? mesh.tangents : generate_tangents(mesh);
     }
     for (const auto& t : mesh.triangles) {
@@ -204,6 +213,17 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
       }
     }
   }
+  // Spheres (scene order): their records, the spherical mapping's (no alpha: spheres are opaque).
+  std::vector<uint32_t> sphere_material(scene.spheres.size(), CLPT_TEXTURE_NONE);
+  if (use.spheres)
+    for (size_t i = 0; i < scene.spheres.size(); ++i)
+      if (scene.spheres[i].material.textures.any()) {
+        const Sphere& sphere = scene.spheres[i];
+        if (sphere.material.textures.normal.used())
+          throw Error(ExitCode::BadScene, sphere.material.textures.normal.where + ": sphere '" + sphere.name +
+                                              "': normal maps apply to meshes only (docs/textures.md)");
+        sphere_material[i] = add_material(sphere.material.textures, false);
+      }
   GpuTexturing header{};
   size_t at = aligned(sizeof(GpuTexturing));
   header.textures = uint32_t(at);
@@ -214,6 +234,8 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
   at = aligned(at + triangle_order.size() * sizeof(GpuTriangleTexturing));
   header.tangents = use.normal_maps ? uint32_t(at) : 0u;
   if (use.normal_maps) at = aligned(at + triangle_order.size() * sizeof(GpuTriangleTangents));
+  header.spheres = use.spheres ? uint32_t(at) : 0u;
+  if (use.spheres) at = aligned(at + scene.spheres.size() * sizeof(uint32_t));
   const size_t texels = at;
   const uint64_t total = uint64_t(texels) + texel_bytes;
   if (total > 0xffffffffull)
@@ -229,6 +251,8 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
     put(buffer, header.triangles + i * sizeof(GpuTriangleTexturing), triangles[triangle_order[i]]);
     if (use.normal_maps) put(buffer, header.tangents + i * sizeof(GpuTriangleTangents), tangents[triangle_order[i]]);
   }
+  for (size_t i = 0; use.spheres && i < scene.spheres.size(); ++i)
+    put(buffer, header.spheres + i * sizeof(uint32_t), sphere_material[sphere_order.empty() ? i : sphere_order[i]]);
   for (size_t i = 0; i < scene.images.size(); ++i) put_texels(buffer, texels + image_offset[i], scene.images[i]);
   return buffer;
 }

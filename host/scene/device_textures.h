@@ -25,6 +25,7 @@ struct TextureUse {
   bool normal_maps = false;
   bool emission = false;  // an emission texture (light sampling then reads it too)
   bool alpha = false;     // a material whose alpha cuts its surface (alpha_in_effect): CLPT_HAS_ALPHA
+  bool spheres = false;   // a sphere's material is textured (CLPT_HAS_SPHERE_TEXTURES; its images count above)
 };
 TextureUse texture_use(const Scene& scene);
 
@@ -35,11 +36,15 @@ TextureUse texture_use(const Scene& scene);
 bool alpha_in_effect(const MaterialTextures& t, const std::vector<TextureImage>& images);
 
 // The texturing buffer for the scene's triangles in the order `triangle_order` gives (entry i of
-// the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh);
+// the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh) and its
+// spheres in the order `sphere_order` gives (entry i of the device's spheres is the scene's sphere
+// sphere_order[i]; empty: the scene's order), whose section (GpuTexturing.spheres, one u32 each:
+// a textured-material index or CLPT_TEXTURE_NONE) is there only when a sphere is textured;
 // empty when no material is textured or cut by its alpha. Throws Error(BadScene) naming the mesh and the material's
 // key when a textured material's mesh has no texture coordinates, or when the buffer would need
 // more than 2^32 bytes (the offsets are 32-bit).
-std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order);
+std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order,
+                                    const std::vector<uint32_t>& sphere_order = {});
 
 // Per-vertex tangents of a mesh with texture coordinates (MikkTSpace-style, docs/textures.md):
 // each triangle's tangent and bitangent from its uv gradients, summed per vertex weighted by the

@@ -497,8 +497,8 @@ void reject_foreign_parameters(const TableReader& material, MaterialType type) {
 
 // Textured values (docs/textures.md): `KEY = { texture = "wood.png", scale = ..., wrap = ...,
 // filter = ..., uv_scale = ..., color_space = ..., channel = ... }` instead of a colour or number.
-// `images` is the scene's image list; nullptr where the object has no texture coordinates (a
-// sphere), which makes any texture an error.
+// `images` is the scene's image list; nullptr makes any texture an error (kept for objects
+// without texture coordinates; spheres have theirs from the spherical mapping, docs/textures.md).
 bool is_texture_value(const TableReader& material, std::string_view key) {
   const toml::node* node = material.get(key);
   return node && node->is_table();
@@ -513,8 +513,7 @@ TextureRef read_texture_value(const TableReader& material, std::string_view key,
   const toml::node* node = material.get(key);
   const SourcePosition at = material.position_of(*node);
   if (!images)
-    fail(at, material.key_path(key),
-         "a texture needs texture coordinates, and a sphere has none (textures apply to meshes)");
+    fail(at, material.key_path(key), "a texture needs texture coordinates, and this object has none");
   const auto table = material.table(key);
   std::vector<std::string> keys{"texture", "scale", "wrap", "filter", "uv_scale", "color_space"};
   if (!colour && !normal) keys.emplace_back("channel");
@@ -631,7 +630,7 @@ void read_normal_map(const TableReader& material, Material& m, std::vector<Textu
   m.textures.normal = read_texture_value(material, kNormalMapKey, images, false, true, nullptr, nullptr, &m.textures.normal_scale);
 }
 
-// `images`: the scene's image list, or nullptr for a sphere's material (no texture coordinates).
+// `images`: the scene's image list.
 Material read_material(const TableReader& material, std::vector<TextureImage>* images) {
   // Unknown keys first, against every material key, so a misspelling gets its suggestion.
   material.reject_unknown_keys(all_material_keys());
@@ -672,7 +671,9 @@ SourcePosition table_position(const toml::table& table, const TableReader& top,
   return top.position_of(toml::source_region{*first, *first, nullptr});
 }
 
-Sphere read_sphere(const TableReader& sphere, size_t index) {
+// A sphere's material may be textured through the spherical mapping (docs/textures.md), all but
+// a normal map (spheres have no tangent frame in the kernels).
+Sphere read_sphere(const TableReader& sphere, size_t index, std::vector<TextureImage>& images) {
   sphere.reject_unknown_keys({"name", "center", "radius", "material"});
   Sphere s;
   s.name = sphere.string("name").value_or("sphere[" + std::to_string(index) + "]");
@@ -680,7 +681,11 @@ Sphere read_sphere(const TableReader& sphere, size_t index) {
   s.radius = sphere.required_number("radius");
   const auto material = sphere.table("material");
   if (!material) sphere.fail_missing("material");
-  s.material = read_material(*material, nullptr);
+  if (const toml::node* normal = material->get(kNormalMapKey))
+    fail(material->position_of(*normal), material->key_path(kNormalMapKey),
+         "sphere '" + s.name + "': normal maps apply to meshes only (a sphere's material takes colour, metallic, "
+         "roughness and emission textures: docs/textures.md)");
+  s.material = read_material(*material, &images);
   s.where = sphere.where();
   return s;
 }
@@ -936,7 +941,8 @@ Scene build_scene(const toml::table& root, const std::string& file,
   const auto camera = top.table("camera");
   if (!camera) fail(top.where(), "camera", "missing required table [camera]");
   read_camera(*camera, scene.camera);
-  scene.spheres = read_table_array(top, "sphere", read_sphere);
+  scene.spheres = read_table_array(top, "sphere",
+                                   [&](const TableReader& sphere, size_t i) { return read_sphere(sphere, i, scene.images); });
   scene.meshes = read_table_array(top, "mesh", [&](const TableReader& mesh, size_t i) {
     return read_mesh(mesh, i, sources, scene.warnings, scene.images);
   });

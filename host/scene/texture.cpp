@@ -88,6 +88,11 @@ std::array<double, 4> texel(const TextureImage& image, int x, int y) {
 
 }  // namespace
 
+std::array<double, 2> sphere_texture_coordinates(double x, double y, double z) {
+  const double pi = 3.14159265358979323846;
+  return {0.5 - std::atan2(x, -z) / (2 * pi), 1 - std::acos(std::clamp(y, -1.0, 1.0)) / pi};
+}
+
 std::array<double, 4> lookup_texture_on_host(const TextureImage& image, const TextureRef& ref, double u, double v) {
   const auto& t = ref.uv_transform;
   const double tu = t[0] * u + t[1] * v + t[2];

@@ -103,6 +103,12 @@ double srgb_to_linear(double encoded);
 // alpha; 3: alpha 1). The texels are the stored ones (8-bit values rounded as the device holds them).
 std::array<double, 4> lookup_texture_on_host(const TextureImage& image, const TextureRef& ref, double u, double v);
 
+// A sphere's texture coordinates at the unit outward normal (x, y, z) = (p - c) / r, the spherical
+// mapping (docs/textures.md; kernels/texture.cl, sphere_uv, in float): u = 1/2 - atan2(x, -z) /
+// (2 pi), v = 1 - acos(y) / pi. Blender's sphere projection in clpt's +Y-up world: the image's centre
+// faces -Z, its top row is the north pole +Y.
+std::array<double, 2> sphere_texture_coordinates(double x, double y, double z);
+
 // The texel value the device holds for a decoded sample (8-bit: rounded to 1/255; half: rounded
 // to half; float: as is).
 double stored_texel(TexelStorage storage, float value);

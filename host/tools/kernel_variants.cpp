@@ -20,9 +20,10 @@ enum Dim {
 
 // Whether a combination can be rendered: the book estimator cannot see punctual lights (the plan
 // refuses them, kernel_options.h), so it goes only with "no-punctual".
-// Textures go with meshes: a textured variant's tile is a mesh beside the octahedron.
+// The textured tile goes with meshes: it is a mesh beside the octahedron (textured spheres go
+// with either geometry).
 bool renderable(const std::vector<int>& choice) {
-  return !(choice[kEstimator] == 0 && choice[kLights] != 0) && !(choice[kTextures] != 0 && choice[kGeometry] == 0);
+  return !(choice[kEstimator] == 0 && choice[kLights] != 0) && !(choice[kTextures] == 1 && choice[kGeometry] == 0);
 }
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
@@ -37,7 +38,7 @@ std::set<Pair> all_pairs() {
       for (int va = 0; va < int(dims[a].values.size()); ++va)
         for (int vb = 0; vb < int(dims[b].values.size()); ++vb) {
           const bool book_and_punctual = (a == kEstimator && va == 0 && b == kLights && vb != 0);
-          const bool spheres_and_textures = (a == kGeometry && va == 0 && b == kTextures && vb != 0);
+          const bool spheres_and_textures = (a == kGeometry && va == 0 && b == kTextures && vb == 1);
           if (!book_and_punctual && !spheres_and_textures) pairs.insert({a, va, b, vb});
         }
   return pairs;
@@ -227,6 +228,31 @@ void add_textured_tile(Scene& scene, bool pbr) {
   scene.meshes.push_back(m);
 }
 
+// Textured spheres (docs/textures.md, the spherical mapping): the left ball's colour from an 8-bit
+// sRGB RGB image (repeat, bilinear) and the light's emission from a float one-channel one (clamp,
+// nearest: next-event estimation reads it at the sampled cap points); with `pbr` the glTF ball's
+// metallic and roughness from a half two-channel image (mirror).
+void add_textured_spheres(Scene& scene, bool pbr) {
+  const int first = int(scene.images.size());
+  scene.images.push_back(pattern_image("variant_sphere_rgb8", 8, 4, 3, TexelStorage::U8, ColorSpace::Srgb));
+  scene.images.push_back(pattern_image("variant_sphere_emission_float", 4, 2, 1, TexelStorage::Float, ColorSpace::Linear));
+  if (pbr) scene.images.push_back(pattern_image("variant_sphere_mr_half", 4, 4, 2, TexelStorage::Half, ColorSpace::Linear));
+  for (Sphere& s : scene.spheres) {
+    MaterialTextures& t = s.material.textures;
+    if (s.name == "left_ball") t.base_color.image = first;
+    if (s.name == "light") {
+      t.emission.image = first + 1;
+      t.emission.wrap_u = t.emission.wrap_v = TextureWrap::Clamp;
+      t.emission.filter = TextureFilter::Nearest;
+    }
+    if (s.name == "variant_pbr_ball" && pbr) {
+      t.metallic.image = t.roughness.image = first + 2;
+      t.metallic.wrap_u = t.roughness.wrap_v = TextureWrap::Mirror;
+      t.roughness.channel = 1;
+    }
+  }
+}
+
 }  // namespace
 
 const std::vector<VariantDimension>& kernel_variant_dimensions() {
@@ -245,7 +271,7 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"camera", {"perspective", "orthographic"}},
       {"environment", {"no-environment", "environment-image", "environment-constant"}},
       {"aovs", {"no-aovs", "aovs"}},
-      {"textures", {"no-textures", "textures"}},
+      {"textures", {"no-textures", "textures", "sphere-textures"}},
   };
   static_assert(kDimCount == 15, "one entry per Dim");
   return dims;
@@ -389,7 +415,8 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   }
   if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
   if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
-  if (variant.textures() != 0) add_textured_tile(scene, variant.has_pbr());
+  if (variant.textures() == 1) add_textured_tile(scene, variant.has_pbr());
+  if (variant.textures() == 2) add_textured_spheres(scene, variant.has_pbr());
   if (variant.orthographic()) {
     scene.camera.projection = Projection::Orthographic;
     scene.camera.ortho_height = 6;
