@@ -185,9 +185,10 @@ TEST(SphereTextures, DeviceUvIsTheDocumentedMapping) {
   }
 }
 
-// The book's diffuse room with its left ball's reflectance from a constant image: the same
-// image, statistically, as the plain reflectance (same seed), under nee. Each region of the
-// ball's quarter of the image agrees within the two renders' variances (Sidak).
+// The book's diffuse room with its left ball's reflectance from a constant image, and its right
+// ball a pbr material whose base colour (RGB), metallic (channel 2) and roughness (channel 1)
+// come from another: the same image, statistically, as the plain values (same seed), under nee. Each of
+// 16 regions agrees within the two renders' variances (Sidak).
 TEST(SphereTextures, ConstantTextureRendersAsThePlainColour) {
   Scene plain = load_book_scene("diffuse");
   Scene textured = plain;
@@ -202,15 +203,35 @@ TEST(SphereTextures, ConstantTextureRendersAsThePlainColour) {
   for (int i = 0; i < 8; ++i)
     for (double c : colour) image.pixels.push_back(float(c));
   textured.images.push_back(image);
-  bool found = false;
+  // RGB (0.8, 0.35, 0.1): the base colour, roughness 0.35 in G and metallic 0.1 in B (x factors 1)
+  TextureImage pbr = image;
+  pbr.pixels.clear();
+  for (int i = 0; i < 8; ++i)
+    for (float c : {0.8f, 0.35f, 0.1f}) pbr.pixels.push_back(c);
+  textured.images.push_back(pbr);
+  int found = 0;
   for (size_t i = 0; i < plain.spheres.size(); ++i) {
-    if (plain.spheres[i].name != "left_ball") continue;
-    found = true;
-    plain.spheres[i].material.reflectance = {double(float(0.6)), double(float(0.3)), double(float(0.15))};
-    textured.spheres[i].material.reflectance = {1, 1, 1};
-    textured.spheres[i].material.textures.base_color.image = 0;
+    Material& p = plain.spheres[i].material;
+    Material& t = textured.spheres[i].material;
+    if (plain.spheres[i].name == "left_ball") {
+      ++found;
+      p.reflectance = {double(float(0.6)), double(float(0.3)), double(float(0.15))};
+      t.reflectance = {1, 1, 1};
+      t.textures.base_color.image = 0;
+    } else if (plain.spheres[i].name == "right_ball") {
+      ++found;
+      p.type = t.type = MaterialType::Pbr;
+      p.reflectance = {double(0.8f), double(0.35f), double(0.1f)};
+      p.metallic = double(0.1f);
+      p.roughness = double(0.35f);
+      t.reflectance = {1, 1, 1};
+      t.metallic = t.roughness = 1;
+      t.textures.base_color.image = t.textures.metallic.image = t.textures.roughness.image = 1;
+      t.textures.metallic.channel = 2;
+      t.textures.roughness.channel = 1;
+    }
   }
-  ASSERT_TRUE(found);
+  ASSERT_EQ(found, 2);
   for (Scene* s : {&plain, &textured}) s->settings.estimator = "nee";
   constexpr int w = 32, h = 24;
   const MeanVarianceImage a = render_for_test(plain, w, h, 64, 5).film.mean_variance();
