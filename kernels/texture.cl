@@ -11,7 +11,7 @@
  * 2: grey and alpha, 3: alpha 1). host/scene/texture.cpp does the same in double
  * (lookup_texture_on_host), which tests/test_textures.cpp compares against.
  *
- * Specialisation (kernel_options.cpp): CLPT_HAS_TEXTURES (a textured material on a mesh),
+ * Specialisation (kernel_options.cpp): CLPT_HAS_TEXTURES (a textured material on a mesh or sphere),
  * CLPT_TEXEL_STORAGES (bit 1 << CLPT_TEXEL_* of each storage used), CLPT_TEXEL_CHANNELS (bit
  * 1 << (n - 1) of each channel count), CLPT_TEXTURE_WRAPS (bit 1 << CLPT_WRAP_*),
  * CLPT_HAS_NORMAL_MAPS and CLPT_HAS_EMISSION_TEXTURES. A specialised kernel names them only when

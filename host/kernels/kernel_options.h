@@ -142,9 +142,10 @@ struct KernelFeatures {
   EnvironmentFeature environment = EnvironmentFeature::Image;
   bool punctual_lights() const { return point_lights || spot_lights || directional_lights; }
   // Textures (kernels/texture.cl, docs/textures.md), named like the Pbr features only when on:
-  // CLPT_HAS_TEXTURES (a textured material on a mesh), then what the scene's textures use, as bit
-  // masks: CLPT_TEXEL_STORAGES (1 << CLPT_TEXEL_*), CLPT_TEXEL_CHANNELS (1 << (channels - 1)),
-  // CLPT_TEXTURE_WRAPS (1 << CLPT_WRAP_*); CLPT_HAS_NORMAL_MAPS, CLPT_HAS_EMISSION_TEXTURES.
+  // CLPT_HAS_TEXTURES (a textured material on a mesh or a sphere), then what the scene's textures
+  // use, as bit masks: CLPT_TEXEL_STORAGES (1 << CLPT_TEXEL_*), CLPT_TEXEL_CHANNELS (1 <<
+  // (channels - 1)), CLPT_TEXTURE_WRAPS (1 << CLPT_WRAP_*); CLPT_HAS_NORMAL_MAPS,
+  // CLPT_HAS_EMISSION_TEXTURES.
   bool textures = true;
   uint32_t texel_storages = 7;
   uint32_t texel_channels = 15;
