@@ -1,7 +1,8 @@
 // The scene's textures as the kernels read them (kernels/types.h, GpuTexturing; kernels/texture.cl):
 // one byte buffer holding the texture table, the textured materials, every triangle's texture
-// coordinates, tangents where a material has a normal map (the mesh's, else generated), the
-// corner colours of meshes with vertex colours (glTF COLOR_0) and the texels, packed 8-bit, half or float with 1 to 4 channels; each textured material's alpha mode.
+// coordinates, tangents where a material has a normal map (the mesh's, else generated), every
+// triangle's corner colours where a mesh has vertex colours (glTF COLOR_0) and the texels, packed
+// 8-bit, half or float with 1 to 4 channels; each textured material's alpha mode.
 // Empty for a scene without textures, vertex colours and a material whose alpha is in effect.
 #pragma once
 
@@ -44,9 +45,9 @@ bool mesh_alpha_in_effect(const TriangleMesh& mesh, const std::vector<TextureIma
 
 // The texturing buffer for the scene's triangles in the order `triangle_order` gives (entry i of
 // the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh);
-// empty when no material is textured or cut by its alpha and no mesh has vertex colours. Throws Error(BadScene) naming the mesh and the material's
-// key when a textured material's mesh has no texture coordinates, or when the buffer would need
-// more than 2^32 bytes (the offsets are 32-bit).
+// empty when no material is textured or cut by its alpha and no mesh has vertex colours. Throws
+// Error(BadScene) naming the mesh and the material's key when a textured material's mesh has no
+// texture coordinates, or when the buffer would need more than 2^32 bytes (the offsets are 32-bit).
 std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order);
 
 // Per-vertex tangents of a mesh with texture coordinates (MikkTSpace-style, docs/textures.md):
