@@ -88,6 +88,7 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
       EXPECT_EQ(p.features.directional_lights, v.punctual_light() == 3) << v.name();
       EXPECT_EQ(p.features.orthographic, v.orthographic()) << v.name();
       EXPECT_EQ(p.features.textures, v.textures() != 0) << v.name();
+      EXPECT_EQ(p.features.vertex_colors, v.textures() == 2) << v.name();
       EXPECT_EQ(p.features.texel_storages, v.textures() != 0 ? (v.has_pbr() ? 7u : 3u) : 0u) << v.name();
     }
     EXPECT_EQ(p.features.aovs, v.aovs()) << v.name();  // generic or not: the render's request

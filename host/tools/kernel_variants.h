@@ -54,7 +54,8 @@ struct KernelVariant {
   bool orthographic() const;          // the camera's projection
   int environment() const;            // 0 none, 1 an image (16 x 8 sky with a sun), 2 a constant colour
   bool aovs() const;                  // the first-hit layers (--aovs: CLPT_AOVS)
-  int textures() const;               // 0 none, 1 a tile with every storage and map kind (docs/textures.md)
+  int textures() const;               // 0 none, 1 a tile with every storage and map kind (docs/textures.md),
+                                      // 2 that tile with vertex colours (glTF COLOR_0)
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
