@@ -4,7 +4,8 @@
  * bounce counted.
  *
  * A triangle's alpha is its material's `alpha` (glTF baseColorFactor[3]) times the base colour
- * texture's alpha at the hit (1 for a texture without an alpha channel; texture.cl's lookup).
+ * texture's alpha at the hit (1 for a texture without an alpha channel; texture.cl's lookup) times
+ * the vertex colours' alpha there (glTF COLOR_0; vertex_colors.cl).
  * MASK: the surface is there where alpha >= alpha_cutoff. BLEND: it is there with probability
  * alpha (Cycles' "alpha hashed": no sorting, no refraction), decided by a hash of the ray's seed
  * and the triangle's index: the seed is a hash of the render's seed, the pixel, the sample, the
@@ -25,6 +26,7 @@
 #include "types.h"
 #include "maths.cl"
 #include "texture.cl"
+#include "vertex_colors.cl"
 #include "triangle.cl"
 
 #ifndef CLPT_HAS_ALPHA
@@ -78,6 +80,12 @@ CLPT_INLINE bool alpha_cut(__global const uchar* texturing, uint triangle, Trian
     triangle_uv(triangle_texturing(texturing, triangle), (float)(r.u * inv), (float)(r.v * inv), (float)(r.w * inv), &u, &v);
     alpha *= clamp(texture_lookup_alpha(texturing, base, u, v), 0.0f, 1.0f);
   }
+#if CLPT_HAS_VERTEX_COLORS
+  {
+    const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
+    alpha *= triangle_vertex_color(texturing, triangle, (float)(r.u * inv), (float)(r.v * inv), (float)(r.w * inv)).a;
+  }
+#endif
   /* MASK: absent below the cutoff. BLEND: absent when a uniform number in (0, 1] exceeds alpha. */
   const float blend_threshold = (float)((alpha_hash(seed ^ alpha_hash(triangle)) >> 8) + 1u) * (1.0f / 16777216.0f);
   return alpha < (mode == CLPT_ALPHA_MASK ? mt->alpha_cutoff : blend_threshold);

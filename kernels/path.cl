@@ -31,7 +31,8 @@
  * CLPT_HAS_PBR_VOLUME (a thickness > 0: refraction into the volume, Beer's law inside it),
  * CLPT_HAS_RR, CLPT_HAS_TRIANGLES (triangle shading),
  * CLPT_HAS_BVH (traversal, bvh.cl), CLPT_HAS_TRIANGLE_LIGHTS (light.cl), CLPT_HAS_ENVIRONMENT
- * (environment.cl), CLPT_HAS_TEXTURES (texture.cl, apply_textures below) and CLPT_HAS_ALPHA
+ * (environment.cl), CLPT_HAS_TEXTURES (texture.cl, apply_textures below; CLPT_HAS_VERTEX_COLORS,
+ * vertex_colors.cl, in it) and CLPT_HAS_ALPHA
  * (alpha.cl: MASK and BLEND surfaces cut out inside the ray queries) compile those in;
  * CLPT_ESTIMATOR fixes the estimator (the generic kernel reads params->estimator at run time). */
 #ifndef CLPT_PATH_CL
@@ -48,6 +49,7 @@
 #include "bsdf.cl"
 #include "bsdf_pbr.cl"
 #include "texture.cl"
+#include "vertex_colors.cl"
 #include "light.cl"
 #include "environment.cl"
 
@@ -389,6 +391,10 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sph
     const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v);
     m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
   }
+#if CLPT_HAS_VERTEX_COLORS
+  const TexelRgba k = triangle_vertex_color(texturing, (uint)triangle, (float)((real)1 - b1 - b2), (float)b1, (float)b2);
+  m->reflectance = v3_mul(m->reflectance, v3(k.r, k.g, k.b)); /* glTF COLOR_0 (vertex_colors.cl) */
+#endif
 #if CLPT_HAS_PBR
   if (mt->metallic != CLPT_TEXTURE_NONE) {
     const TexelRgba c = texture_lookup(texturing, mt->metallic, u, v);

@@ -116,8 +116,8 @@ typedef struct GpuTriangleShading {
 /* Textures (kernels/texture.cl, docs/textures.md): one read-only byte buffer, the "texturing"
  * buffer, holds a GpuTexturing header at byte 0 and the sections it points to, each 16-byte
  * aligned: the texture table, the textured materials, one GpuTriangleTexturing per triangle
- * (same index as GpuTriangle), one GpuTriangleTangents per triangle (normal maps only) and the
- * texels. Scenes without textures get a zeroed header (triangles 0: no texturing), which only
+ * (same index as GpuTriangle), one GpuTriangleTangents per triangle (normal maps only), one
+ * GpuTriangleColors per triangle (glTF COLOR_0 only) and the texels. Scenes without textures get a zeroed header (triangles 0: no texturing), which only
  * the generic kernel reads (texture.cl, triangle_texture_material). */
 #define CLPT_TEXTURE_NONE 0xffffffffu
 #define CLPT_TEXEL_U8 0u    /* one byte per channel, value / 255 */
@@ -134,7 +134,7 @@ typedef struct GpuTexturing { /* 32 bytes: byte offsets of the sections */
   clpt_u32 materials; /* GpuMaterialTextures[] */
   clpt_u32 triangles; /* GpuTriangleTexturing[], one per triangle */
   clpt_u32 tangents;  /* GpuTriangleTangents[], one per triangle; 0: none */
-  clpt_u32 colors;    /* per-triangle corner colours (glTF COLOR_0); 0: none */
+  clpt_u32 colors;    /* GpuTriangleColors[], one per triangle (glTF COLOR_0); 0: none */
   clpt_u32 spheres;   /* per-sphere textured-material indices; 0: none */
   clpt_u32 pad[2];
 } GpuTexturing;
@@ -194,6 +194,17 @@ typedef struct GpuTriangleTangents {
   float t1[4];
   float t2[4];
 } GpuTriangleTangents;
+
+/* Per-corner colours of a triangle (glTF COLOR_0; kernels/vertex_colors.cl): linear RGBA, VEC3's
+ * alpha 1. Present (GpuTexturing.colors != 0) only when some mesh has COLOR_0, then one record per
+ * triangle; every triangle of a mesh with COLOR_0 has a textured-material record (even without an
+ * image), and the records of the other triangles are white (1, 1, 1, 1), which multiplies nothing.
+ * Interpolated at the hit's barycentrics, RGB x the base colour, A x its alpha. 48 bytes. */
+typedef struct GpuTriangleColors {
+  float c0[4];
+  float c1[4];
+  float c2[4];
+} GpuTriangleColors;
 
 /* Estimators (GpuRenderParams.estimator; a specialised kernel fixes it with CLPT_ESTIMATOR). */
 #define CLPT_ESTIMATOR_BOOK 0u /* the book's: light only where a path hits an emitter */
@@ -384,6 +395,9 @@ typedef struct GpuPixelPass {
   X(GpuTriangleTangents, t0)                                                                      \
   X(GpuTriangleTangents, t1)                                                                      \
   X(GpuTriangleTangents, t2)                                                                      \
+  X(GpuTriangleColors, c0)                                                                        \
+  X(GpuTriangleColors, c1)                                                                        \
+  X(GpuTriangleColors, c2)                                                                        \
   X(GpuSphere, surface_point)                                                                     \
   X(GpuSphere, radius)                                                                            \
   X(GpuSphere, surface_normal)                                                                    \
@@ -446,7 +460,7 @@ typedef struct GpuPixelPass {
   X(GpuPixelPass, segments)
 
 #define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass) \
-  X(GpuTexturing) X(GpuTexture) X(GpuMaterialTextures) X(GpuTriangleTexturing) X(GpuTriangleTangents)
+  X(GpuTexturing) X(GpuTexture) X(GpuMaterialTextures) X(GpuTriangleTexturing) X(GpuTriangleTangents) X(GpuTriangleColors)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the
  * host, and on the device by an array type whose size is negative when the size differs (OpenCL C
@@ -477,6 +491,7 @@ CLPT_CHECK_SIZE(GpuTexture, 64)
 CLPT_CHECK_SIZE(GpuMaterialTextures, 48)
 CLPT_CHECK_SIZE(GpuTriangleTexturing, 32)
 CLPT_CHECK_SIZE(GpuTriangleTangents, 48)
+CLPT_CHECK_SIZE(GpuTriangleColors, 48)
 #undef CLPT_CHECK_SIZE
 
 #endif /* CLPT_TYPES_H */

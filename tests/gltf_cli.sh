@@ -2,7 +2,9 @@
 # A glTF scene rendered end to end by the real `clpt render` (issue 33): tests/gltf_corpus.py's
 # lit.glb (a floor and a box in the glTF material, a point and a spot light, a camera) at 32x24,
 # 4 spp, as a raw film; the film must be finite and not black (the lights reach the floor), and
-# the same file as .gltf with its buffer embedded must load alike (--camera by name).
+# the same file as .gltf with its buffer embedded must load alike (--camera by name). The same
+# file without its lights renders with the warning that its image will be black, and without it
+# once --environment lights it.
 # Needs the device side of issue 33 (the Pbr material and punctual lights in the kernels).
 #   gltf_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -u
@@ -32,4 +34,22 @@ print("mean", mean)
 sys.exit(0 if math.isfinite(mean) and mean > 0 and all(math.isfinite(p) for p in pixels) else 1)
 PY
 done
+python3 - "$work/good/lit.gltf" "$work/unlit.gltf" <<'PY' || fail "could not write unlit.gltf"
+import json, sys
+d = json.load(open(sys.argv[1]))
+d.pop("extensions", None)
+d["extensionsUsed"] = [e for e in d.get("extensionsUsed", []) if e != "KHR_lights_punctual"]
+for n in d["nodes"]:
+    n.get("extensions", {}).pop("KHR_lights_punctual", None)
+for m in d.get("materials", []):
+    m.pop("emissiveFactor", None)
+json.dump(d, open(sys.argv[2], "w"))
+PY
+cp "$work"/good/*.bin "$work/" 2>/dev/null
+err=$("$clpt" render "$work/unlit.gltf" --width 8 --height 6 --spp 1 -o "$work/unlit.pfm" 2>&1) || fail "unlit.gltf exited $?: $err"
+grep -q "unlit.gltf: the scene has no lights, no emissive material and no environment, so the image will be black" <<<"$err" ||
+  fail "unlit.gltf: no warning that the image will be black: $err"
+err=$("$clpt" render "$work/unlit.gltf" --environment "$src/scenes/environment-sky.hdr" --width 8 --height 6 --spp 1 \
+      -o "$work/env.pfm" 2>&1) || fail "unlit.gltf --environment exited $?: $err"
+if grep -q "will be black" <<<"$err"; then fail "unlit.gltf --environment: warned that the image will be black: $err"; fi
 [[ $failures -eq 0 ]]

@@ -88,11 +88,12 @@ TEST(KernelVariants, ScenesAndProgramsFollowTheVariant) {
       EXPECT_EQ(p.features.directional_lights, v.punctual_light() == 3) << v.name();
       EXPECT_EQ(p.features.orthographic, v.orthographic()) << v.name();
       EXPECT_EQ(p.features.textures, v.textures() != 0) << v.name();
-      EXPECT_EQ(p.features.texel_storages, v.textures() != 0 ? (v.has_pbr() ? 7u : v.textures() == 1 ? 3u : 5u) : 0u)
+      EXPECT_EQ(p.features.vertex_colors, v.textures() == 2) << v.name();
+      EXPECT_EQ(p.features.texel_storages, v.textures() != 0 ? (v.has_pbr() ? 7u : v.textures() == 3 ? 5u : 3u) : 0u)
           << v.name();
-      EXPECT_EQ(p.features.sphere_textures, v.textures() == 2) << v.name();
+      EXPECT_EQ(p.features.sphere_textures, v.textures() == 3) << v.name();
       EXPECT_EQ(kernel_build_options(p.features).find("-DCLPT_HAS_SPHERE_TEXTURES=1") != std::string::npos,
-                v.textures() == 2)
+                v.textures() == 3)
           << v.name();
     }
     EXPECT_EQ(p.features.aovs, v.aovs()) << v.name();  // generic or not: the render's request

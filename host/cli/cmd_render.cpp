@@ -302,6 +302,7 @@ int run(RenderOptions o) {
   // extreme-scene tests proved for this preset (README "Numerical extremes").
   if (!o.quiet && writes) {
     std::vector<std::string> warnings = scene.warnings;
+    if (std::string unlit = unlit_scene_warning(scene); !unlit.empty()) warnings.push_back(std::move(unlit));
     for (std::string& warning : precision_range_warnings(scene, request.precision)) warnings.push_back(std::move(warning));
     for (const std::string& warning : warnings) std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
   }

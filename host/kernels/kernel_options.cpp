@@ -216,8 +216,9 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   const TextureUse textures = texture_use(scene);
   // A material cut by its alpha needs the texturing buffer's records (kernels/alpha.cl) even
   // without an image: the texture code comes with it (with no texel storage compiled).
-  f.textures = textures.any || textures.alpha;
+  f.textures = textures.any || textures.alpha || textures.vertex_colors;
   f.alpha = textures.alpha;
+  f.vertex_colors = textures.vertex_colors;
   f.texel_storages = textures.storages;
   f.texel_channels = textures.channel_counts;
   f.texture_wraps = textures.wraps;
@@ -312,6 +313,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
         << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0);
     if (features.textures && features.sphere_textures) o << " -DCLPT_HAS_SPHERE_TEXTURES=1";
     if (features.alpha) o << " -DCLPT_HAS_ALPHA=1";
+    if (features.vertex_colors) o << " -DCLPT_HAS_VERTEX_COLORS=1";
   }
   o << " -DCLPT_HAS_TRIANGLES=" << (features.generic || features.triangles ? 1 : 0);
   o << " -DCLPT_HAS_BVH=" << (features.has_hierarchy() ? 1 : 0);
@@ -425,7 +427,8 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     o << "  textures: "
       << (features.generic ? std::string("compiled (generic kernel: every storage, channel count and wrap mode)")
           : features.textures && features.texel_storages == 0
-              ? std::string("compiled for the alpha records alone (no image: no texel storage)")
+              ? std::string(features.vertex_colors ? "compiled for the vertex colours and alpha records alone (no image: no texel storage)"
+                                                   : "compiled for the alpha records alone (no image: no texel storage)")
           : features.textures
               ? "compiled (a textured material on a " +
                     std::string(features.sphere_textures ? "mesh or sphere; spheres by the spherical mapping: " : "mesh: ") +
@@ -440,6 +443,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
       << (features.generic ? "compiled (generic kernel: MASK and BLEND surfaces cut out in every ray query)"
           : features.alpha ? "compiled (a MASK or BLEND material: its surface cut out in every ray query, shadow rays too)"
                            : "left out (no MASK or BLEND material)")
+      << "\n";
+    o << "  vertex colours: "
+      << (features.generic ? "compiled (generic kernel: glTF COLOR_0 read where a scene has it)"
+          : features.vertex_colors ? "compiled (a glTF mesh with COLOR_0: its colours multiply the base colour and alpha)"
+                                   : "left out (no glTF COLOR_0)")
       << "\n";
   }
   o << "  camera: "

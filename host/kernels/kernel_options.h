@@ -159,6 +159,9 @@ struct KernelFeatures {
   // (scene/device_textures.h, alpha_in_effect); named only when on, and then CLPT_HAS_TEXTURES is
   // on too (the texturing buffer carries the alpha).
   bool alpha = true;
+  // CLPT_HAS_VERTEX_COLORS (kernels/vertex_colors.cl): a mesh has vertex colours (glTF COLOR_0);
+  // named only when on, and then CLPT_HAS_TEXTURES is on too (the texturing buffer carries them).
+  bool vertex_colors = true;
   bool triangles = true;       // CLPT_HAS_TRIANGLES: the scene has meshes
   // CLPT_HAS_TRIANGLE_LIGHTS: next-event estimation samples emitting triangles too, and picks
   // lights by power (nee and a scene with an emitting mesh, or generic).

@@ -79,6 +79,19 @@ bool alpha_in_effect(const MaterialTextures& t, const std::vector<TextureImage>&
   return texture_alpha || t.alpha < (t.alpha_mode == AlphaMode::Mask ? t.alpha_cutoff : 1.0);
 }
 
+bool has_vertex_colors(const TriangleMesh& mesh) {
+  return !mesh.triangles.empty() && !mesh.colors.empty() && mesh.colors.size() == mesh.positions.size();
+}
+
+bool mesh_alpha_in_effect(const TriangleMesh& mesh, const std::vector<TextureImage>& images) {
+  if (!has_vertex_colors(mesh)) return alpha_in_effect(mesh.material.textures, images);
+  double least = 1;
+  for (const auto& c : mesh.colors) least = std::min(least, c[3]);
+  MaterialTextures t = mesh.material.textures;
+  t.alpha *= least;
+  return alpha_in_effect(t, images);
+}
+
 TextureUse texture_use(const Scene& scene) {
   TextureUse use;
   const auto uses = [&](const Material& m) {
@@ -97,7 +110,11 @@ TextureUse texture_use(const Scene& scene) {
     use.alpha |= alpha_in_effect(m.textures, scene.images);
   };
   for (const TriangleMesh& mesh : scene.meshes)
-    if (!mesh.triangles.empty()) uses(mesh.material);
+    if (!mesh.triangles.empty()) {
+      uses(mesh.material);
+      use.alpha |= mesh_alpha_in_effect(mesh, scene.images);
+      use.vertex_colors |= has_vertex_colors(mesh);
+    }
   for (const Sphere& sphere : scene.spheres) {
     use.spheres |= sphere.material.textures.any();
     if (sphere.material.textures.any()) uses(sphere.material);
@@ -146,11 +163,12 @@ std::vector<std::array<double, 4>> generate_tangents(const TriangleMesh& mesh) {
 std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order,
                                     const std::vector<uint32_t>& sphere_order) {
   const TextureUse use = texture_use(scene);
-  if (!use.any && !use.alpha) return {};
+  if (!use.any && !use.alpha && !use.vertex_colors) return {};
   std::vector<GpuTexture> textures;
   std::vector<GpuMaterialTextures> materials;
   std::vector<GpuTriangleTexturing> triangles;
   std::vector<GpuTriangleTangents> tangents;
+  std::vector<GpuTriangleColors> colors;
   // Texel offsets are relative to the texel section until the layout is known.
   std::vector<size_t> image_offset(scene.images.size());
   size_t texel_bytes = 0;
@@ -180,9 +198,10 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
     const MaterialTextures& mt = mesh.material.textures;
     uint32_t material = CLPT_TEXTURE_NONE;
     std::vector<std::array<double, 4>> mesh_tangents;
-    const bool alpha = alpha_in_effect(mt, scene.images);
+    const bool alpha = mesh_alpha_in_effect(mesh, scene.images);
+    const bool colored = has_vertex_colors(mesh);
     const bool has_uvs = mesh.uvs.size() == mesh.positions.size();
-    if ((mt.any() || alpha) && !mesh.triangles.empty()) {
+    if ((mt.any() || alpha || colored) && !mesh.triangles.empty()) {
       if (mt.any() && !has_uvs) {
         const TextureRef* named = nullptr;
         for (int i = 0; i < 5 && !named; ++i)
@@ -211,6 +230,13 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
             for (int k = 0; k < 4; ++k) corner[c][k] = static_cast<float>(mesh_tangents[t[c]][size_t(k)]);
         tangents.push_back(tg);
       }
+      if (use.vertex_colors) {
+        GpuTriangleColors k{};
+        float* corner[3] = {k.c0, k.c1, k.c2};
+        for (int c = 0; c < 3; ++c)
+          for (int i = 0; i < 4; ++i) corner[c][i] = colored ? static_cast<float>(mesh.colors[t[c]][size_t(i)]) : 1.0f;
+        colors.push_back(k);
+      }
     }
   }
   // Spheres (scene order): their records, the spherical mapping's (no alpha: spheres are opaque).
@@ -234,6 +260,8 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
   at = aligned(at + triangle_order.size() * sizeof(GpuTriangleTexturing));
   header.tangents = use.normal_maps ? uint32_t(at) : 0u;
   if (use.normal_maps) at = aligned(at + triangle_order.size() * sizeof(GpuTriangleTangents));
+  header.colors = use.vertex_colors ? uint32_t(at) : 0u;
+  if (use.vertex_colors) at = aligned(at + triangle_order.size() * sizeof(GpuTriangleColors));
   header.spheres = use.spheres ? uint32_t(at) : 0u;
   if (use.spheres) at = aligned(at + scene.spheres.size() * sizeof(uint32_t));
   const size_t texels = at;
@@ -250,6 +278,7 @@ std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32
   for (size_t i = 0; i < triangle_order.size(); ++i) {
     put(buffer, header.triangles + i * sizeof(GpuTriangleTexturing), triangles[triangle_order[i]]);
     if (use.normal_maps) put(buffer, header.tangents + i * sizeof(GpuTriangleTangents), tangents[triangle_order[i]]);
+    if (use.vertex_colors) put(buffer, header.colors + i * sizeof(GpuTriangleColors), colors[triangle_order[i]]);
   }
   for (size_t i = 0; use.spheres && i < scene.spheres.size(); ++i)
     put(buffer, header.spheres + i * sizeof(uint32_t), sphere_material[sphere_order.empty() ? i : sphere_order[i]]);

@@ -1,8 +1,9 @@
 // The scene's textures as the kernels read them (kernels/types.h, GpuTexturing; kernels/texture.cl):
 // one byte buffer holding the texture table, the textured materials, every triangle's texture
-// coordinates, tangents where a material has a normal map (the mesh's, else generated) and the
-// texels, packed 8-bit, half or float with 1 to 4 channels; each textured material's alpha mode.
-// Empty for a scene without textures and without a material whose alpha is in effect.
+// coordinates, tangents where a material has a normal map (the mesh's, else generated), every
+// triangle's corner colours where a mesh has vertex colours (glTF COLOR_0) and the texels, packed
+// 8-bit, half or float with 1 to 4 channels; each textured material's alpha mode.
+// Empty for a scene without textures, vertex colours and a material whose alpha is in effect.
 #pragma once
 
 #include <array>
@@ -26,6 +27,7 @@ struct TextureUse {
   bool emission = false;  // an emission texture (light sampling then reads it too)
   bool alpha = false;     // a material whose alpha cuts its surface (alpha_in_effect): CLPT_HAS_ALPHA
   bool spheres = false;   // a sphere's material is textured (CLPT_HAS_SPHERE_TEXTURES; its images count above)
+  bool vertex_colors = false;  // a mesh with vertex colours (glTF COLOR_0): CLPT_HAS_VERTEX_COLORS
 };
 TextureUse texture_use(const Scene& scene);
 
@@ -35,14 +37,21 @@ TextureUse texture_use(const Scene& scene);
 // Other materials render as OPAQUE ones (the same image, no alpha code).
 bool alpha_in_effect(const MaterialTextures& t, const std::vector<TextureImage>& images);
 
+// Whether a mesh has vertex colours (TriangleMesh::colors, glTF COLOR_0) and triangles.
+bool has_vertex_colors(const TriangleMesh& mesh);
+
+// alpha_in_effect for a mesh: its material's, the factor's alpha taken times the least alpha of
+// its vertex colours (the alpha interpolated over a triangle is never below its corners' least).
+bool mesh_alpha_in_effect(const TriangleMesh& mesh, const std::vector<TextureImage>& images);
+
 // The texturing buffer for the scene's triangles in the order `triangle_order` gives (entry i of
 // the device's triangles is the scene's triangle triangle_order[i], counting mesh by mesh) and its
 // spheres in the order `sphere_order` gives (entry i of the device's spheres is the scene's sphere
 // sphere_order[i]; empty: the scene's order), whose section (GpuTexturing.spheres, one u32 each:
-// a textured-material index or CLPT_TEXTURE_NONE) is there only when a sphere is textured;
-// empty when no material is textured or cut by its alpha. Throws Error(BadScene) naming the mesh and the material's
-// key when a textured material's mesh has no texture coordinates, or when the buffer would need
-// more than 2^32 bytes (the offsets are 32-bit).
+// a textured-material index or CLPT_TEXTURE_NONE) is there only when a sphere is textured; empty
+// when no material is textured or cut by its alpha and no mesh has vertex colours. Throws
+// Error(BadScene) naming the mesh and the material's key when a textured material's mesh has no
+// texture coordinates, or when the buffer would need more than 2^32 bytes (the offsets are 32-bit).
 std::vector<uint8_t> pack_texturing(const Scene& scene, const std::vector<uint32_t>& triangle_order,
                                     const std::vector<uint32_t>& sphere_order = {});
 

@@ -27,6 +27,10 @@ Kind kind_of(AccessorUse use) {
               true};
     case AccessorUse::Tangent:
       return {TINYGLTF_TYPE_VEC4, "VEC4", {TINYGLTF_COMPONENT_TYPE_FLOAT}, false};
+    case AccessorUse::Color:  // VEC4 as well (checked_accessor)
+      return {TINYGLTF_TYPE_VEC3, "VEC3 or VEC4",
+              {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+              true};
     case AccessorUse::Indices:
       break;
   }
@@ -94,7 +98,8 @@ const tinygltf::Accessor& checked_accessor(const tinygltf::Model& model, int ind
   const tinygltf::Accessor& a = model.accessors[size_t(index)];
   const Kind kind = kind_of(use);
   const std::string seen = " (" + accessor_name(index) + ")";
-  if (a.type != kind.type) gltf_fail(referrer, "the accessor's type must be " + std::string(kind.type_name) + seen);
+  const bool color4 = use == AccessorUse::Color && a.type == TINYGLTF_TYPE_VEC4;
+  if (a.type != kind.type && !color4) gltf_fail(referrer, "the accessor's type must be " + std::string(kind.type_name) + seen);
   bool allowed = false;
   for (int t : kind.component_types) allowed = allowed || t == a.componentType;
   if (!allowed) gltf_fail(referrer, "component type " + std::string(component_name(a.componentType)) + " is not allowed here" + seen);
@@ -192,6 +197,7 @@ std::vector<double> read_accessor(const tinygltf::Model& model, int index, Acces
   const int components = use == AccessorUse::Indices    ? 1
                          : use == AccessorUse::Texcoord ? 2
                          : use == AccessorUse::Tangent  ? 4
+                         : use == AccessorUse::Color    ? (a.type == TINYGLTF_TYPE_VEC4 ? 4 : 3)
                                                         : 3;
   const uint64_t element_bytes = component_bytes(a.componentType) * uint64_t(components);
   std::vector<double> values;

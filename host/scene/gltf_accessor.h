@@ -13,7 +13,8 @@
 namespace clpt {
 
 // What a use of an accessor allows (the specification's table of mesh attributes, and indices).
-enum class AccessorUse { Position, Normal, Texcoord, Indices, Tangent };
+// Color: COLOR_0, VEC3 or VEC4 (read_accessor gives the accessor's own 3 or 4 components).
+enum class AccessorUse { Position, Normal, Texcoord, Indices, Tangent, Color };
 
 // The elements of accessors[index], `components` doubles each (3 for VEC3 ...), one after the
 // other. Normalised integers are mapped as the specification says (unsigned: c / max; signed:

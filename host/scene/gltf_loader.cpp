@@ -77,7 +77,7 @@ std::string read_file(const std::string& path) {
 }
 
 bool has_emission(const Scene& scene) {
-  if (!scene.lights.empty()) return true;
+  if (!scene.lights.empty() || scene.environment) return true;
   for (const TriangleMesh& m : scene.meshes)
     if (m.material.emission[0] > 0 || m.material.emission[1] > 0 || m.material.emission[2] > 0) return true;
   return false;
@@ -107,8 +107,6 @@ Scene load_gltf_scene(std::string_view bytes, const std::string& path, const Glt
     if (scene.meshes.empty())
       gltf_fail("scenes[" + std::to_string(chosen_scene(c.document.model)) + "]", "the scene has no triangles to render");
     set_view(c.document.model, c.nodes, view, scene, c.document.warnings);
-    if (!has_emission(scene))
-      c.document.warnings.push_back("the scene has no lights and no emissive material, so the image will be black");
     for (const std::string& w : c.document.warnings) scene.warnings.push_back(path + ": " + w);
     for (TriangleMesh& m : scene.meshes) {
       m.file = path;
@@ -120,6 +118,12 @@ Scene load_gltf_scene(std::string_view bytes, const std::string& path, const Glt
   } catch (const GltfError& e) {
     throw Error(ExitCode::BadScene, path + ": " + e.what());
   }
+}
+
+std::string unlit_scene_warning(const Scene& scene) {
+  if (has_emission(scene)) return "";
+  return scene.file + ": the scene has no lights, no emissive material and no environment, so the image will be black "
+                      "(--environment FILE lights it)";
 }
 
 GltfContents load_gltf_contents(const std::string& path, const MeshPlacement& placement) {

@@ -81,7 +81,7 @@ std::vector<std::array<uint32_t, 3>> assemble(const std::vector<uint32_t>& v, in
 // The primitive's vertices and triangles in world space (normals not yet normalised).
 LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, const Affine& world, int mode,
                           const std::string& element, std::vector<std::array<double, 2>>& uvs,
-                          std::vector<std::array<double, 4>>& tangents) {
+                          std::vector<std::array<double, 4>>& tangents, std::vector<std::array<double, 4>>& colors) {
   LocalMesh local;
   const int position = p.attributes.at("POSITION");
   const size_t vertices = accessor_count(c.model, position, AccessorUse::Position, element + ".attributes.POSITION");
@@ -124,6 +124,18 @@ LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, con
       tangents.push_back({d[0] / length, d[1] / length, d[2] / length, w});
     }
   }
+  if (const auto k = p.attributes.find("COLOR_0"); k != p.attributes.end()) {
+    // Linear RGB(A) multipliers of the base colour (glTF 2.0 section 3.7.2.1); a VEC3's alpha is 1.
+    const std::vector<double> values = same_count("COLOR_0", k->second, AccessorUse::Color);
+    const size_t n = values.size() / vertices;  // 3 or 4
+    for (size_t i = 0; i + n <= values.size(); i += n) {
+      std::array<double, 4> rgba = {values[i], values[i + 1], values[i + 2], n == 4 ? values[i + 3] : 1.0};
+      for (double x : rgba)
+        if (x < 0)
+          gltf_fail(element + ".attributes.COLOR_0", "colour " + std::to_string(i / n) + " has a negative component");
+      colors.push_back(rgba);
+    }
+  }
   local.triangles = assemble(vertex_sequence(c, p, vertices, element), mode, element);
   c.triangles += local.triangles.size();
   if (c.triangles > kMaxGltfTriangles)
@@ -156,7 +168,7 @@ void append_primitive(PrimitiveContext& c, const NodeInstance& instance, int mes
   m.name = (mesh.name.empty() ? "meshes[" + std::to_string(mesh_index) + "]" : mesh.name) + "/primitive " + std::to_string(index);
   m.gltf_element = "nodes[" + std::to_string(instance.node) + "] " + element;
   m.material = p.material >= 0 ? c.materials[size_t(p.material)] : default_material();
-  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, m.uvs, m.tangents);
+  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, m.uvs, m.tangents, m.colors);
   const size_t dropped = place_mesh(local, m);  // the identity placement: drops degenerate triangles
   for (size_t i = 0; i < m.positions.size(); ++i)
     for (double x : m.positions[i])

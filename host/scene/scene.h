@@ -111,6 +111,9 @@ struct TriangleMesh {
   // Tangents (glTF TANGENT: xyz, w the bitangent's sign), one per position, in world space, or
   // empty: normal-mapped meshes without them get generated ones (device_textures.cpp).
   std::vector<std::array<double, 4>> tangents;
+  // Vertex colours (glTF COLOR_0: linear RGBA, a VEC3's alpha 1, each >= 0), one per position, or
+  // empty: RGB multiplies the base colour, A its alpha (device_textures.cpp, docs/textures.md).
+  std::vector<std::array<double, 4>> colors;
   std::vector<std::array<uint32_t, 3>> triangles;
   Material material;
   SourcePosition where;  // position of the [[mesh]] table

@@ -23,7 +23,8 @@ enum Dim {
 // The textured tile goes with meshes: it is a mesh beside the octahedron (textured spheres go
 // with either geometry).
 bool renderable(const std::vector<int>& choice) {
-  return !(choice[kEstimator] == 0 && choice[kLights] != 0) && !(choice[kTextures] == 1 && choice[kGeometry] == 0);
+  return !(choice[kEstimator] == 0 && choice[kLights] != 0) &&
+         !((choice[kTextures] == 1 || choice[kTextures] == 2) && choice[kGeometry] == 0);
 }
 
 // (dimension a, value of a, dimension b, value of b) with a < b.
@@ -38,7 +39,7 @@ std::set<Pair> all_pairs() {
       for (int va = 0; va < int(dims[a].values.size()); ++va)
         for (int vb = 0; vb < int(dims[b].values.size()); ++vb) {
           const bool book_and_punctual = (a == kEstimator && va == 0 && b == kLights && vb != 0);
-          const bool spheres_and_textures = (a == kGeometry && va == 0 && b == kTextures && vb == 1);
+          const bool spheres_and_textures = (a == kGeometry && va == 0 && b == kTextures && (vb == 1 || vb == 2));
           if (!book_and_punctual && !spheres_and_textures) pairs.insert({a, va, b, vb});
         }
   return pairs;
@@ -192,13 +193,16 @@ TextureImage pattern_image(const std::string& name, int w, int h, int channels, 
 // metallic-roughness map and a float one-channel emission map (mirror, nearest): every storage,
 // four channel counts, every wrap mode, both filters, normal maps and emission textures. The tile's
 // alpha (the base colour's alpha channel, kernels/alpha.cl) is in effect: MASK, or BLEND with `pbr`,
-// so every textured variant compiles CLPT_HAS_ALPHA and cuts the tile in its ray queries.
-void add_textured_tile(Scene& scene, bool pbr) {
+// so every textured variant compiles CLPT_HAS_ALPHA and cuts the tile in its ray queries. With
+// `vertex_colors` the tile's corners carry colours (glTF COLOR_0, kernels/vertex_colors.cl), one
+// with alpha below 1.
+void add_textured_tile(Scene& scene, bool pbr, bool vertex_colors) {
   TriangleMesh m;
   m.name = "variant_tile";
   m.positions = {{-1.2, 0.02, 2.2}, {1.2, 0.02, 2.2}, {1.2, 0.02, 3.4}, {-1.2, 0.02, 3.4}};
   m.uvs = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
   m.triangles = {{0, 2, 1}, {0, 3, 2}};
+  if (vertex_colors) m.colors = {{1, 0.5, 0.25, 1}, {0.25, 1, 0.5, 1}, {0.5, 0.25, 1, 0.6}, {1, 1, 1, 1}};
   const int first = int(scene.images.size());
   scene.images.push_back(pattern_image("variant_rgba8", 8, 4, 4, TexelStorage::U8, ColorSpace::Srgb));
   scene.images.push_back(pattern_image("variant_normal_half", 4, 4, 3, TexelStorage::Half, ColorSpace::Linear));
@@ -271,7 +275,7 @@ const std::vector<VariantDimension>& kernel_variant_dimensions() {
       {"camera", {"perspective", "orthographic"}},
       {"environment", {"no-environment", "environment-image", "environment-constant"}},
       {"aovs", {"no-aovs", "aovs"}},
-      {"textures", {"no-textures", "textures", "sphere-textures"}},
+      {"textures", {"no-textures", "textures", "textures-vertex-colors", "sphere-textures"}},
   };
   static_assert(kDimCount == 15, "one entry per Dim");
   return dims;
@@ -415,8 +419,8 @@ Scene variant_scene(const Scene& diffuse, const KernelVariant& variant) {
   }
   if (variant.has_pbr()) scene.spheres.push_back(pbr_ball(variant.has_pbr_transmission(), variant.has_pbr_volume()));
   if (variant.punctual_light() != 0) scene.lights.push_back(punctual_light(variant.punctual_light()));
-  if (variant.textures() == 1) add_textured_tile(scene, variant.has_pbr());
-  if (variant.textures() == 2) add_textured_spheres(scene, variant.has_pbr());
+  if (variant.textures() == 1 || variant.textures() == 2) add_textured_tile(scene, variant.has_pbr(), variant.textures() == 2);
+  if (variant.textures() == 3) add_textured_spheres(scene, variant.has_pbr());
   if (variant.orthographic()) {
     scene.camera.projection = Projection::Orthographic;
     scene.camera.ortho_height = 6;

@@ -55,7 +55,8 @@ struct KernelVariant {
   int environment() const;            // 0 none, 1 an image (16 x 8 sky with a sun), 2 a constant colour
   bool aovs() const;                  // the first-hit layers (--aovs: CLPT_AOVS)
   int textures() const;               // 0 none, 1 a tile with every storage and map kind (docs/textures.md),
-                                      // 2 textured spheres (the left ball, the light, the glTF ball)
+                                      // 2 that tile with vertex colours (glTF COLOR_0), 3 textured
+                                      // spheres (the left ball, the light, the glTF ball)
 
   // The values joined by '.', e.g. "megakernel-lockstep.robust.nee.rr.specialised.unrolled.phong.no-glass";
   // usable as a file name and a test name (after replacing '.' and '-').
