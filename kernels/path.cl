@@ -392,8 +392,14 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sph
     m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
   }
 #if CLPT_HAS_VERTEX_COLORS
-  const TexelRgba k = triangle_vertex_color(texturing, (uint)triangle, (float)((real)1 - b1 - b2), (float)b1, (float)b2);
-  m->reflectance = v3_mul(m->reflectance, v3(k.r, k.g, k.b)); /* glTF COLOR_0 (vertex_colors.cl) */
+#if CLPT_HAS_SPHERE_TEXTURES
+  if (triangle >= 0) /* a triangle's (a sphere's record has none) */
+#endif
+  {
+    const real b1 = s->triangle.b1, b2 = s->triangle.b2;
+    const TexelRgba k = triangle_vertex_color(texturing, (uint)triangle, (float)((real)1 - b1 - b2), (float)b1, (float)b2);
+    m->reflectance = v3_mul(m->reflectance, v3(k.r, k.g, k.b)); /* glTF COLOR_0 (vertex_colors.cl) */
+  }
 #endif
 #if CLPT_HAS_PBR
   if (mt->metallic != CLPT_TEXTURE_NONE) {

@@ -3,7 +3,8 @@
 // coordinates against the documented formula (sphere_texture_coordinates) pixel by pixel; a
 // constant texture against the plain colour it stands for; an emission texture on a sphere light
 // alike under nee (whose light samples read it, light.cl) and book; the sphere section's order
-// when the spheres are hierarchy primitives; and the refusal of a normal map on a sphere.
+// when the spheres are hierarchy primitives; a textured sphere beside a vertex-coloured mesh; and
+// the refusal of a normal map on a sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -330,6 +331,41 @@ TEST(SphereTextures, SphereSectionFollowsTheHierarchyOrder) {
       for (int dx = 0; dx < 2; ++dx)
         expect_colour(pixel_of(mean, size, 8 * x + 3 + dx, 8 * z + 11 + dy), colours[size_t(i)],
                       "globe " + std::to_string(i));
+  }
+}
+
+// A textured sphere beside a mesh with vertex colours (glTF COLOR_0: the texturing buffer's colors
+// section, read for triangle hits only): the sphere's hits read no triangle's colours, in the
+// specialised and the generic kernel, and the globe shows its landmarks as alone.
+TEST(SphereTextures, BesideAVertexColouredMesh) {
+  install_scene_image_reader();
+  const std::string dir = temp_dir("colours");
+  write_globe_marker(dir);
+  Scene scene = globe_scene(dir, {1, 0, 0}, {0, 1, 0});
+  TriangleMesh mesh;  // in the image's top-left corner, beside the globe's disc
+  mesh.name = "coloured";
+  mesh.positions = {{0.5, 0.8, 0.8}, {0.5, 0.8, 1.1}, {0.5, 1.1, 1.1}};
+  mesh.triangles = {{0, 1, 2}};
+  mesh.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}};
+  mesh.material.type = MaterialType::Emitter;
+  mesh.material.emission = {1, 1, 1};
+  scene.meshes.push_back(mesh);
+  constexpr int size = 11, centre = 5;
+  for (bool generic : {false, true}) {
+    scene.settings.width = scene.settings.height = size;
+    scene.settings.spp = 4;
+    RenderRequest request;
+    request.use_kernel_cache = false;
+    request.scene = scene;
+    request.generic_kernel = generic;
+    const char* device = std::getenv("CLPT_TEST_DEVICE");
+    request.device = device ? device : "cpu";
+    RenderReport report;
+    const std::vector<float> mean = run_render(request, report).mean_rgb();
+    const std::string k = generic ? "generic: " : "specialised: ";
+    expect_colour(pixel_of(mean, size, centre, centre), kMiddle[1], k + "centre: green");
+    expect_colour(pixel_of(mean, size, centre - 3, centre), kMiddle[0], k + "left: red");
+    expect_colour(pixel_of(mean, size, centre, 1), kNorth, k + "high: the top row");
   }
 }
 
