@@ -7,8 +7,14 @@
 // the refusal of a normal map on a sphere.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render/render_session.h"
