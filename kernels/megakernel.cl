@@ -27,6 +27,11 @@
 #ifndef CLPT_LOCKSTEP_GROUP
 #define CLPT_LOCKSTEP_GROUP 0
 #endif
+/* Whether the lockstep loop pairs segments under one draw (kernel_options.cpp,
+ * lockstep_pairs_segments): named, as 0, only where the triangle loop keeps it one a step. */
+#ifndef CLPT_LOCKSTEP_SEGMENT_PAIRS
+#define CLPT_LOCKSTEP_SEGMENT_PAIRS 1
+#endif
 #if CLPT_LOCKSTEP_GROUP
 /* Contract: launched with work-groups of exactly CLPT_LOCKSTEP_GROUP work-items and a global size
  * rounded up to a whole number of them; the work-items past the last job trace a dead copy of
@@ -96,13 +101,15 @@ __kernel void render_paths(__global const GpuSphere* spheres, __global const Gpu
 #endif
     path_shade_light(&next, &shadow, blocked);
     path = path_select(path.alive != 0, next, path);
-#elif defined(CLPT_SCATTER_DRAW_PAIRS) && CLPT_SCATTER_DRAW_PAIRS && CLPT_UNROLL_SCENE_LOOPS
+#elif defined(CLPT_SCATTER_DRAW_PAIRS) && CLPT_SCATTER_DRAW_PAIRS && CLPT_UNROLL_SCENE_LOOPS && CLPT_LOCKSTEP_SEGMENT_PAIRS
     /* Two segments per step, one draw for both (path.cl, scatter_draw): every live path of the
      * group is at the same bounce, an even one here, as all start at 0 and each live path's
      * segment adds one (a segment that does not scatter ends the path). Ended paths' lanes compute
      * with their own state and are selected away. Only with the unrolled scene loops, the CPUs'
      * shape: a forced lockstep kernel on a GPU (rolled loops) keeps one segment a step, whose
-     * registers two would raise (gfx906: 110 -> 127 VGPRs, scripts/gpu_compile.sh). */
+     * registers two would raise (gfx906: 110 -> 127 VGPRs, scripts/gpu_compile.sh); and not with
+     * the triangle loop, whose four unrolled copies doubled PoCL's cold compile (12 s for the
+     * Cornell box; docs/performance.md, "Fixed costs"). */
     const Uniform4 draw = scatter_draw(&params, &path);
     path_shade_drawn(&next, path_intersect(&path, &scene, &params), &scene, &params, draw);
     path = path_select(path.alive != 0, next, path);

@@ -403,12 +403,12 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sph
 #endif
 #if CLPT_HAS_PBR
   if (mt->metallic != CLPT_TEXTURE_NONE) {
-    const TexelRgba c = texture_lookup(texturing, mt->metallic, u, v);
-    m->metallic *= clamp(rgba_channel(c, texture_at(texturing, mt->metallic)->channel), 0.0f, 1.0f);
+    const uint index = mt->metallic;
+    m->metallic *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v), 0.0f, 1.0f);
   }
   if (mt->roughness != CLPT_TEXTURE_NONE) {
-    const TexelRgba c = texture_lookup(texturing, mt->roughness, u, v);
-    m->roughness *= clamp(rgba_channel(c, texture_at(texturing, mt->roughness)->channel), 0.0f, 1.0f);
+    const uint index = mt->roughness;
+    m->roughness *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v), 0.0f, 1.0f);
   }
 #endif
 #if CLPT_HAS_EMISSION_TEXTURES

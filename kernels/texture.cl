@@ -259,6 +259,38 @@ CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index
   return out;
 }
 
+/* Channel `channel` (0 to 3) of texel (x, y) as linear RGBA: rgba_channel(texel_fetch(...),
+ * channel), reading one sample rather than four (a scalar parameter's lookup). */
+CLPT_INLINE float texel_channel(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y,
+                                uint channel) {
+  const uint channels = t->channels;
+  const bool colour = channels >= 3u;       /* 3, 4: RGB; 1, 2: grey */
+  const bool alpha = (channels & 1u) == 0u; /* 2, 4 */
+  const bool wants_alpha = channel == 3u;
+  /* RGB's channel k is sample k, grey's sample 0; alpha is the last sample, or 1 without one. */
+  const uint sample = colour ? channel : (wants_alpha ? 1u : 0u);
+  const float c = texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + min(sample, channels - 1u));
+#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
+  const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u && !wants_alpha;
+  const float decoded = srgb ? kSrgbToLinear[(uint)(c * 255.0f + 0.5f) & 255u] : c;
+#else
+  const float decoded = c;
+#endif
+  return wants_alpha ? (alpha ? c : 1.0f) : decoded;
+}
+
+/* Channel `channel` (0 to 3) of texture `index`'s linear RGBA at mesh coordinates (u, v):
+ * rgba_channel(texture_lookup(...), channel), reading one sample of each of the four texels (the
+ * metallic and roughness lookups: a quarter of the reads and table lookups, and of the code PoCL
+ * compiles for them, docs/performance.md "Fixed costs"). */
+CLPT_INLINE float texture_lookup_channel(__global const uchar* texturing, uint index, uint channel, float u, float v) {
+  __global const GpuTexture* t = texture_at(texturing, index);
+  const TexelFootprint f = texture_footprint(t, u, v);
+  const float a = texel_channel(texturing, t, f.ix0, f.iy0, channel), b = texel_channel(texturing, t, f.ix1, f.iy0, channel);
+  const float c = texel_channel(texturing, t, f.ix0, f.iy1, channel), d = texel_channel(texturing, t, f.ix1, f.iy1, channel);
+  return f.w00 * a + f.w10 * b + f.w01 * c + f.w11 * d;
+}
+
 /* The alpha of texel (x, y): its last channel for 2 or 4 channels, else 1 (texel_fetch's .a,
  * without reading the colour channels). */
 CLPT_INLINE float texel_alpha(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {

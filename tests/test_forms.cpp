@@ -11,6 +11,7 @@
 #include "mesh_test_util.h"
 #include "kernels/kernel_options.h"
 #include "render_test_util.h"
+#include "scene/loop_spheres.h"
 #include "scene/scene_loader.h"
 
 namespace clpt::test {
@@ -248,6 +249,23 @@ namespace {
 // shape, or the generic kernel): the same closest hits and shadow rays, so the same image. The
 // Cornell box (32 triangles, a triangle light) and the book's room with a mirror box of 12
 // triangles beside its 8 spheres (both loops in one kernel).
+// The loop's cap (kMaxLoopTriangles, 32: the unrolled body's cold PoCL build grows faster than
+// its triangles, docs/performance.md "Fixed costs"): the Cornell box's 32 triangles are in the
+// loop, one triangle more sends the scene to the hierarchy.
+TEST(TriangleLoop, CapIsTheCornellBoxsCount) {
+  Scene scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/cornell-box.toml");
+  EXPECT_EQ(loop_triangle_count(scene), 32);
+  TriangleMesh extra = scene.meshes.back();
+  extra.triangles.resize(1);
+  scene.meshes.push_back(extra);
+  EXPECT_EQ(loop_triangle_count(scene), 0);
+  KernelFeatures f = features_for_scene(scene);
+  f.cpu_vector_lanes = 16;
+  f.unroll_scene_loops = true;
+  EXPECT_FALSE(f.triangles_in_loop());
+  EXPECT_NE(kernel_build_options(f).find("-DCLPT_HAS_BVH=1"), std::string::npos);
+}
+
 TEST(TriangleLoop, EqualsTheHierarchy) {
   KernelFeatures f = features_for_scene(load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/cornell-box.toml"));
   f.cpu_vector_lanes = 16;

@@ -1,5 +1,5 @@
-// Textures (docs/textures.md): the device's lookups (kernels/texture.cl) against the host's in
-// double (scene/texture.cpp) over every storage, channel count, wrap mode and filter, at texel
+// Textures (docs/textures.md): the device's lookups (kernels/texture.cl, RGBA and one channel) against
+// the host's in double (scene/texture.cpp) over every storage, channel count, wrap mode and filter, at texel
 // centres, texel edges and outside [0, 1]; sRGB decoding and half rounding against the standards;
 // the texture-coordinate conventions of inline meshes, OBJ and PLY files and glTF (a marker image
 // seen through an orthographic camera); Debian's BoxTextured glTF in its three forms; a flat
@@ -56,11 +56,14 @@ TextureImage random_image(int w, int h, int channels, TexelStorage storage, Colo
   return image;
 }
 
-std::vector<cl_float4> lookup_on_device(const Scene& scene, const std::vector<cl_float4>& queries) {
+// The device's lookups (probe_texture.cl): RGBA by texture_lookup (kernel probe_texture), or each
+// channel by texture_lookup_channel (probe_texture_channels).
+std::vector<cl_float4> lookup_on_device(const Scene& scene, const std::vector<cl_float4>& queries,
+                                        const char* probe = "probe_texture") {
   std::vector<uint32_t> order(scene.meshes.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = uint32_t(i);
   const std::vector<uint8_t> texturing = pack_texturing(scene, order);
-  Kernel kernel(test_program("probe_texture.cl"), "probe_texture", test_device().where());
+  Kernel kernel(test_program("probe_texture.cl"), probe, test_device().where());
   const Buffer buffer = upload(texturing), in = upload(queries);
   Buffer out(test_device(), queries.size() * sizeof(cl_float4), CL_MEM_WRITE_ONLY, "lookups");
   kernel.set_arg(0, buffer);
@@ -110,7 +113,15 @@ TEST(TextureLookup, DeviceMatchesTheHostInDouble) {
   }
   for (size_t t = 0; t < refs.size(); ++t)
     for (const auto& p : points) queries.push_back({{float(p[0]), float(p[1]), float(t), 0}});
-  const std::vector<cl_float4> device = lookup_on_device(scene_with(images, refs), queries);
+  const Scene scene = scene_with(images, refs);
+  const std::vector<cl_float4> device = lookup_on_device(scene, queries);
+  // The scalar parameters' one-sample lookups give the RGBA lookup's channels, to the bit but for
+  // the compiler's freedom to contract differently (sRGB, grey, alpha and a missing alpha alike).
+  const std::vector<cl_float4> channels = lookup_on_device(scene, queries, "probe_texture_channels");
+  for (size_t q = 0; q < queries.size(); ++q)
+    for (int k = 0; k < 4; ++k)
+      ASSERT_NEAR(channels[q].s[k], device[q].s[k], 1e-6f * (1 + std::fabs(device[q].s[k])))
+          << names[size_t(queries[q].s[2])] << " channel " << k;
   size_t checked = 0;
   for (size_t q = 0; q < queries.size(); ++q) {
     const size_t t = size_t(queries[q].s[2]);

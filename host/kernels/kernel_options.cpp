@@ -280,6 +280,11 @@ bool scatter_draws_paired(const KernelFeatures& features) {
   return !features.glass && !features.pbr && !features.russian_roulette;
 }
 
+bool lockstep_pairs_segments(const KernelFeatures& features) {
+  return !features.generic && features.lockstep_group > 0 && scatter_draws_paired(features) &&
+         features.unroll_scene_loops && !features.has_hierarchy() && !features.triangles_in_loop();
+}
+
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
@@ -338,6 +343,10 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (hit_carries_sphere_centre(features)) o << " -DCLPT_HIT_CENTRE=1";
   if (picks_material_by_select(features) && !reads_spheres_by_select(features)) o << " -DCLPT_MATERIAL_BY_SELECT=1";
   if (!features.generic) o << " -DCLPT_SCATTER_DRAW_PAIRS=" << (scatter_draws_paired(features) ? 1 : 0);
+  // Named only when off where the lockstep loop would pair segments: other kernels keep their options.
+  if (features.lockstep_group > 0 && scatter_draws_paired(features) && features.unroll_scene_loops &&
+      !features.has_hierarchy() && !lockstep_pairs_segments(features))
+    o << " -DCLPT_LOCKSTEP_SEGMENT_PAIRS=0";
   if (features.aovs) o << " -DCLPT_AOVS=1";
   if (features.build_nonce) o << " -DCLPT_BUILD_NONCE=" << features.build_nonce;
   return o.str();
@@ -539,8 +548,9 @@ std::string explain_kernel_options(const KernelFeatures& features) {
     << (features.generic ? std::string("as the scene's parameters say (one per bounce, or one per two without glass, pbr and Russian roulette)")
         : scatter_draws_paired(features)
             ? std::string("one per two bounces (no glass, no Russian roulette)") +
-                  (features.lockstep_group > 0 && !features.has_hierarchy() && features.unroll_scene_loops
-                       ? ", evaluated once for the lockstep loop's two segments"
+                  (lockstep_pairs_segments(features) ? ", evaluated once for the lockstep loop's two segments"
+                   : features.lockstep_group > 0 && !features.has_hierarchy() && features.unroll_scene_loops
+                       ? ", the lockstep loop one segment a step (the triangle loop: its cold compile halved)"
                        : "")
             : std::string("one per bounce (glass, a pbr material or Russian roulette read a third or fourth uniform)"))
     << "\n";

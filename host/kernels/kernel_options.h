@@ -240,6 +240,14 @@ bool picks_material_by_select(const KernelFeatures& features);
 // GpuRenderParams.scatter_draw_pairs, which make_params (render_plan.cpp) sets from the scene's.
 bool scatter_draws_paired(const KernelFeatures& features);
 
+// Whether the lockstep megakernel evaluates each paired draw once for two segments a step
+// (megakernel.cl): with paired draws and unrolled scene loops, no hierarchy, and no triangle loop.
+// With one, the step's two segments held four unrolled copies of the loop (each segment's closest
+// hit and shadow ray), and PoCL's cold compile of the Cornell box took 12 s; one segment a step
+// halves that for 0.985x the paths per CPU-second (docs/performance.md, "Fixed costs"). The
+// draws, and so the images, are the same either way. Off, it is named (CLPT_LOCKSTEP_SEGMENT_PAIRS=0).
+bool lockstep_pairs_segments(const KernelFeatures& features);
+
 // OpenCL build options for these features.
 std::string kernel_build_options(const KernelFeatures& features);
 

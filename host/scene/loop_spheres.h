@@ -25,9 +25,10 @@ std::vector<bool> loop_spheres(const Scene& scene);
 // A small mesh is tested the same way: a scene of at most this many triangles, whose spheres are
 // all in the loop, has its triangles tested in an unrolled loop after the spheres, every path's
 // against every triangle, and compiles no hierarchy traversal (kernels/triangle_loop.cl; where the
-// scene loops are unrolled, i.e. on CPUs: kernel_options.cpp). The threshold is measured with
-// `clpt bench` (docs/performance.md, "Traversal").
-constexpr int kMaxLoopTriangles = 64;
+// scene loops are unrolled, i.e. on CPUs: kernel_options.cpp). The threshold keeps the unrolled
+// body's cold PoCL build under 10 s on 2 cores (32 triangles: 6-7 CPU-s; 40: 9.4; 64: 17): the
+// Cornell box fits; docs/performance.md, "Fixed costs" and "Traversal".
+constexpr int kMaxLoopTriangles = 32;
 // The scene's triangle count when its triangles are few enough for the loop, else 0.
 int loop_triangle_count(const Scene& scene);
 
