@@ -52,4 +52,8 @@ grep -q "unlit.gltf: the scene has no lights, no emissive material and no enviro
 err=$("$clpt" render "$work/unlit.gltf" --environment "$src/scenes/environment-sky.hdr" --width 8 --height 6 --spp 1 \
       -o "$work/env.pfm" 2>&1) || fail "unlit.gltf --environment exited $?: $err"
 if grep -q "will be black" <<<"$err"; then fail "unlit.gltf --environment: warned that the image will be black: $err"; fi
+# A TOML scene lit by its emitter spheres (the book's) renders without that warning.
+err=$("$clpt" render "$src/scenes/diffuse.toml" --width 8 --height 6 --spp 16 -o "$work/diffuse.pfm" 2>&1) ||
+  fail "diffuse.toml exited $?: $err"
+if grep -q "will be black" <<<"$err"; then fail "diffuse.toml: warned that the image will be black: $err"; fi
 [[ $failures -eq 0 ]]

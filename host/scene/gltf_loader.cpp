@@ -76,10 +76,17 @@ std::string read_file(const std::string& path) {
   return bytes;
 }
 
+// Light from a punctual light, the environment, or an emitting material (an emitter, or a
+// pbr material with an emission) on a mesh or a sphere.
 bool has_emission(const Scene& scene) {
   if (!scene.lights.empty() || scene.environment) return true;
+  const auto emits = [](const Material& m) {
+    return m.type == MaterialType::Emitter || m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0;
+  };
   for (const TriangleMesh& m : scene.meshes)
-    if (m.material.emission[0] > 0 || m.material.emission[1] > 0 || m.material.emission[2] > 0) return true;
+    if (emits(m.material)) return true;
+  for (const Sphere& s : scene.spheres)
+    if (emits(s.material)) return true;
   return false;
 }
 

@@ -28,9 +28,9 @@ bool is_gltf_file(const std::string& path, std::string_view bytes);
 // contents; `path` names it in messages and its folder holds the external buffers.
 Scene load_gltf_scene(std::string_view bytes, const std::string& path, const GltfView& view = {});
 
-// Where a glTF scene, with the command line's environment applied, has no light at all (no
-// punctual light, no emissive material, no environment): the warning `render` prints, naming the
-// file; empty otherwise. (A TOML scene without light is an error at load.)
+// Where a scene (glTF, or TOML, whose loader refuses one without light), with the command line's
+// environment applied, has no light at all (no punctual light, no emitting material, no
+// environment): the warning `render` prints, naming the file; empty otherwise.
 std::string unlit_scene_warning(const Scene& scene);
 
 // What a TOML [[gltf]] table places: the glTF scene's meshes and lights (its cameras are
