@@ -6,11 +6,13 @@
 // to a driver) as NAME.cl and its build options as NAME.options, plus variants.txt listing the
 // names in order, each file atomically.
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 
 #include "cli/commands.h"
 #include "kernels/kernel_source.h"
+#include "render/render_session.h"
 #include "cl/cl_device.h"
 #include "scene/scene_loader.h"
 #include "tools/kernel_budget.h"
@@ -62,6 +64,38 @@ int budget(const KernelsOptions& o) {
   return 0;
 }
 
+// Every covering variant rendered once from source (a 32 x 24, 1-spp image of its scene, clpt's
+// kernel cache unused and PoCL's turned off), printing its program build and first launch (where
+// PoCL compiles the work-group functions): the cold build a user meets on first use of a feature
+// combination (docs/performance.md, "Fixed costs"). A measurement, not a test: exit 0.
+int cold_builds(const KernelsOptions& o) {
+  setenv("POCL_KERNEL_CACHE", "0", 1);  // before OpenCL is loaded: PoCL reads it once
+  const Scene diffuse = load_scene_file(o.scene);
+  double worst_specialised = 0, worst_generic = 0;
+  for (const KernelVariant& v : covering_kernel_variants()) {
+    RenderRequest request;
+    request.use_kernel_cache = false;
+    request.scene = diffuse;
+    request.scene.settings.width = 32;
+    request.scene.settings.height = 24;
+    request.scene.settings.spp = 1;
+    request.scene.settings.sampler = Sampler::Jitter;
+    apply_variant(v, request);
+    request.device = o.device;
+    RenderReport report;
+    run_render(request, report);
+    const double seconds = report.build_seconds + report.first_launch_seconds;
+    const bool generic = request.generic_kernel;
+    (generic ? worst_generic : worst_specialised) = std::max(generic ? worst_generic : worst_specialised, seconds);
+    std::printf("%6.2f s = build %5.2f + first launch %5.2f  %s\n", seconds, report.build_seconds,
+                report.first_launch_seconds, v.name().c_str());
+    std::fflush(stdout);
+  }
+  std::printf("slowest: specialised %.2f s, generic %.2f s (%s)\n", worst_specialised, worst_generic,
+              select_device(list_devices(), o.device).label().c_str());
+  return 0;
+}
+
 }  // namespace
 
 std::function<int()> add_kernels_command(CLI::App& app) {
@@ -80,9 +114,15 @@ std::function<int()> add_kernels_command(CLI::App& app) {
                 "local memory, work-group limits, and (NVIDIA) ptxas's registers and spills, as TSV");
   budget_cmd->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml)")->required();
   budget_cmd->add_option("--device", o->device, "The device, as for render --device")->capture_default_str();
-  return [o, list, emit] {
+  CLI::App* cold = cmd->add_subcommand(
+      "cold-builds", "Render every variant once from source (no kernel cache; PoCL's turned off) and print its "
+                     "program build plus first launch, seconds");
+  cold->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml)")->required();
+  cold->add_option("--device", o->device, "The device, as for render --device")->capture_default_str();
+  return [o, list, emit, cold] {
     if (list->parsed()) return list_variants();
     if (emit->parsed()) return emit_variants(*o);
+    if (cold->parsed()) return cold_builds(*o);
     return budget(*o);
   };
 }
