@@ -138,7 +138,12 @@ TEST(GltfLoader, TriangleWithTheDefaultMaterialAndFramingView) {
   expect_near(scene.camera.look_at, {0.5, 0.5, 0});
   expect_near(scene.camera.position, {0.5, 0.5, radius / std::sin(half_fov)});
   EXPECT_TRUE(has_warning(scene, "no camera"));
-  EXPECT_TRUE(has_warning(scene, "no lights"));
+  // No light: `render` warns once its environment options are applied (unlit_scene_warning).
+  EXPECT_FALSE(has_warning(scene, "no lights"));
+  EXPECT_NE(unlit_scene_warning(scene).find("no lights"), std::string::npos);
+  Scene lit = scene;
+  lit.environment = Environment{};
+  EXPECT_EQ(unlit_scene_warning(lit), "");
 }
 
 TEST(GltfLoader, TrsAndMatrixNodesComposeDownTheHierarchy) {
