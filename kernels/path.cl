@@ -761,9 +761,14 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   path->throughput = v3_select(scatters, throughput, path->throughput);
   path->origin = v3_select(scatters, leaving_origin(&surface, next), path->origin);
   path->direction = v3_select(scatters, next, path->direction);
-  path->skip_sphere = scatters && sphere_index >= 0 && v3_dot(next, normal) > (real)0 ? sphere_index : -1;
+  /* `&`, not `&&`: a short-circuit here becomes a branch on `scatters`, into which LLVM sinks the
+   * reads only the scattering paths use (the light's emission, under nee), and a read under a
+   * branch is a gather in PoCL's vectorised work-item loop where it was one read for the whole
+   * loop before it (docs/performance.md, "The book's scenes against the tree before the glTF
+   * material"). */
+  path->skip_sphere = (scatters & (sphere_index >= 0) & (v3_dot(next, normal) > (real)0)) ? sphere_index : -1;
   path->bounce += scatters ? 1u : 0u;
-  path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
+  path->alive = (scatters & !v3_is_zero(weight)) ? 1 : 0;
 }
 
 CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
