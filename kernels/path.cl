@@ -761,14 +761,20 @@ CLPT_INLINE void path_shade_surface_drawn(PathState* path, Hit hit, const SceneB
   path->throughput = v3_select(scatters, throughput, path->throughput);
   path->origin = v3_select(scatters, leaving_origin(&surface, next), path->origin);
   path->direction = v3_select(scatters, next, path->direction);
-  /* `&`, not `&&`: a short-circuit here becomes a branch on `scatters`, into which LLVM sinks the
-   * reads only the scattering paths use (the light's emission, under nee), and a read under a
-   * branch is a gather in PoCL's vectorised work-item loop where it was one read for the whole
-   * loop before it (docs/performance.md, "The book's scenes against the tree before the glTF
-   * material"). */
-  path->skip_sphere = (scatters & (sphere_index >= 0) & (v3_dot(next, normal) > (real)0)) ? sphere_index : -1;
+  path->skip_sphere = scatters && sphere_index >= 0 && v3_dot(next, normal) > (real)0 ? sphere_index : -1;
   path->bounce += scatters ? 1u : 0u;
+#if defined(CLPT_LOCKSTEP_GROUP) && CLPT_LOCKSTEP_GROUP
+  /* `&`, not `&&`, in the lockstep megakernel: the short-circuit became a branch on `scatters`
+   * into which LLVM sank the reads only scattering paths use (the light's emission, under nee),
+   * and a read under a branch is a gather per work-item where it was one read for the whole
+   * work-item loop before it (16 gathers in the diffuse scene's nee kernel against 4;
+   * docs/performance.md, "The book's scenes against the tree before the glTF material"). Not
+   * elsewhere: in the wavefront's shade kernel the branch-free form let SLP pair the sphere
+   * normal's x and y, which keeps three of its work-item loops scalar. */
   path->alive = (scatters & !v3_is_zero(weight)) ? 1 : 0;
+#else
+  path->alive = scatters && !v3_is_zero(weight) ? 1 : 0;
+#endif
 }
 
 CLPT_INLINE void path_shade_surface(PathState* path, Hit hit, const SceneBuffers* scene, const GpuRenderParams* params,
