@@ -364,6 +364,62 @@ TEST(TextureConventions, GltfTexcoordsAreTopLeft) {
   expect_marker(corners(load_scene_string(data_text, dir + "/scene2.toml")), "glTF, data: URI");
 }
 
+// A material's textures read the coordinate set their texCoord names (KHR_texture_transform's
+// texCoord overriding it): the marker quad with its real coordinates in TEXCOORD_1 and a constant
+// (0.5, 0.5) in TEXCOORD_0 shows the marker only through set 1. A primitive without the set its
+// textured material reads is refused, naming it; textures of one material that name different
+// sets all read the base colour's, with a warning naming the other.
+TEST(TextureConventions, GltfTexCoordPicksTheCoordinateSet) {
+  install_scene_image_reader();
+  const std::string dir = temp_dir("gltf_sets");
+  write_marker(dir);
+  const auto quad = [](const nlohmann::json& emissive_info, bool with_set_1) {
+    GltfBuilder b = marker_quad({{"uri", "marker.png"}});
+    const int uv1 = b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"];
+    const int centre = b.accessor(std::vector<float>{0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}, 5126, "VEC2");
+    b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = centre;
+    if (with_set_1) b.doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_1"] = uv1;
+    b.doc["materials"][0]["emissiveTexture"] = emissive_info;
+    return b;
+  };
+  const auto render_scene = [&](const GltfBuilder& b, const std::string& name) {
+    std::ofstream(dir + "/" + name + ".gltf") << b.gltf_embedded();
+    return load_scene_string(std::string(kCamera) + "[[gltf]]\nfile = \"" + name + ".gltf\"\n", dir + "/" + name + ".toml");
+  };
+  expect_marker(corners(render_scene(quad({{"index", 0}, {"texCoord", 1}}, true), "set1")), "glTF, texCoord 1");
+  const nlohmann::json transformed = {
+      {"index", 0}, {"texCoord", 0}, {"extensions", {{"KHR_texture_transform", {{"texCoord", 1}}}}}};
+  expect_marker(corners(render_scene(quad(transformed, true), "transform_set1")), "glTF, KHR_texture_transform texCoord 1");
+  try {
+    render_scene(quad({{"index", 0}, {"texCoord", 1}}, false), "missing");
+    ADD_FAILURE() << "a primitive without TEXCOORD_1 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.gltf: meshes[0].primitives[0].attributes: no TEXCOORD_1, which the "
+                                         "textures of its material (materials[0]) read by their texCoord"),
+              std::string::npos)
+        << e.what();
+  }
+  try {
+    render_scene(quad({{"index", 0}, {"texCoord", 16}}, true), "set16");
+    ADD_FAILURE() << "texCoord 16 was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("set16.gltf: materials[0].emissiveTexture.texCoord: 16 is not a coordinate "
+                                         "set clpt reads (TEXCOORD_0 to TEXCOORD_15)"),
+              std::string::npos)
+        << e.what();
+  }
+  GltfBuilder mixed = quad({{"index", 0}, {"texCoord", 1}}, true);
+  mixed.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", 0}};
+  const Scene scene = render_scene(mixed, "mixed");
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].material.textures.uv_set, 0);
+  bool warned = false;
+  for (const std::string& w : scene.warnings)
+    warned = warned || w.find("materials[0].emissiveTexture.texCoord: 1, but materials[0].pbrMetallicRoughness."
+                              "baseColorTexture reads TEXCOORD_0") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 // Debian's BoxTextured (the Khronos sample) as a separate PNG, in the GLB's buffer and as a
 // data: URI: the same image, the same texture coordinates.
 TEST(TextureScenes, BoxTexturedLoadsInAllThreeForms) {

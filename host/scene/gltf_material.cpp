@@ -138,24 +138,41 @@ std::array<double, 6> texture_transform(const tinygltf::ExtensionMap& extensions
   pair("offset", 0, offset);
   pair("scale", 1, scale);
   const double rotation = ext_number(t, "rotation", 0, -1e6, 1e6, e);
-  if (t.Has("texCoord")) warnings.push_back(e + ".texCoord: clpt reads TEXCOORD_0 only");
   const double c = std::cos(rotation), s = std::sin(rotation);
   // glTF: u' = a u + b v + ox, v' = d u + e v + oy (the extension's T R S).
   const double a = scale[0] * c, b = scale[1] * s, d = -scale[0] * s, ee = scale[1] * c;
   return {a, -b, b + offset[0], -d, ee, 1 - ee - offset[1]};
 }
 
+// The coordinate set a texture reads: KHR_texture_transform's texCoord where it has one (it
+// overrides the textureInfo's, as the extension says), else `tex_coord`; at most kMaxUvSet.
+int tex_coord_of(int tex_coord, const tinygltf::ExtensionMap& extensions, const std::string& element) {
+  int set = tex_coord;
+  std::string where = element + ".texCoord";
+  if (const auto it = extensions.find("KHR_texture_transform"); it != extensions.end() && it->second.IsObject() &&
+                                                                 it->second.Has("texCoord")) {
+    where = element + ".extensions.KHR_texture_transform.texCoord";
+    const tinygltf::Value& v = it->second.Get("texCoord");
+    if (!v.IsInt()) gltf_fail(where, "must be an integer");
+    set = v.GetNumberAsInt();
+  }
+  if (set < 0 || set > kMaxUvSet)
+    gltf_fail(where, std::to_string(set) + " is not a coordinate set clpt reads (TEXCOORD_0 to TEXCOORD_" +
+                         std::to_string(kMaxUvSet) + ")");
+  return set;
+}
+
 // The texture `info` (a textureInfo or normalTextureInfo: index, texCoord, extensions) as a
-// TextureRef, its image loaded in colour space `space`.
+// TextureRef, its image loaded in colour space `space`; `ref_set` gets its coordinate set.
 TextureRef texture_ref(ImageCache& cache, int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
-                       ColorSpace space, const std::string& element, std::vector<std::string>& warnings) {
+                       ColorSpace space, const std::string& element, std::vector<std::string>& warnings, int& ref_set) {
   TextureRef ref;
   if (index < 0) return ref;
   const tinygltf::Model& model = cache.model;
   if (size_t(index) >= model.textures.size())
     gltf_fail(element + ".index", std::to_string(index) + " is out of range (the file has " +
                                       std::to_string(model.textures.size()) + " textures)");
-  if (tex_coord != 0) warnings.push_back(element + ".texCoord: " + std::to_string(tex_coord) + "; clpt reads TEXCOORD_0 only");
+  ref_set = tex_coord_of(tex_coord, extensions, element);
   const tinygltf::Texture& texture = model.textures[size_t(index)];
   const std::string t = "textures[" + std::to_string(index) + "]";
   if (texture.source < 0) gltf_fail(t + ".source", "missing (clpt reads no texture extensions' image sources)");
@@ -184,18 +201,33 @@ void read_textures(ImageCache& cache, const tinygltf::Material& m, const std::st
   const auto& pbr = m.pbrMetallicRoughness;
   const std::string p = element + ".pbrMetallicRoughness.";
   MaterialTextures& t = out.textures;
+  // Each texture's coordinate set (-1: no texture); the material's is the base colour's, else the
+  // first texture's in this order.
+  int sets[4] = {-1, -1, -1, -1};
+  const std::string names[4] = {p + "baseColorTexture", p + "metallicRoughnessTexture", element + ".emissiveTexture",
+                                element + ".normalTexture"};
   t.base_color = texture_ref(cache, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                             pbr.baseColorTexture.extensions, ColorSpace::Srgb, p + "baseColorTexture", warnings);
+                             pbr.baseColorTexture.extensions, ColorSpace::Srgb, names[0], warnings, sets[0]);
   // Roughness in G, metalness in B (linear).
   const auto& mr = pbr.metallicRoughnessTexture;
-  t.roughness = texture_ref(cache, mr.index, mr.texCoord, mr.extensions, ColorSpace::Linear, p + "metallicRoughnessTexture", warnings);
+  t.roughness = texture_ref(cache, mr.index, mr.texCoord, mr.extensions, ColorSpace::Linear, names[1], warnings, sets[1]);
   t.metallic = t.roughness;
   t.roughness.channel = 1;
   t.metallic.channel = 2;
   t.emission = texture_ref(cache, m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
-                           ColorSpace::Srgb, element + ".emissiveTexture", warnings);
+                           ColorSpace::Srgb, names[2], warnings, sets[2]);
   t.normal = texture_ref(cache, m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
-                         ColorSpace::Linear, element + ".normalTexture", warnings);
+                         ColorSpace::Linear, names[3], warnings, sets[3]);
+  int chosen = -1;
+  for (int i = 0; i < 4 && chosen < 0; ++i) chosen = sets[i] >= 0 ? i : -1;
+  if (chosen >= 0) {
+    t.uv_set = sets[chosen];
+    for (int i = 0; i < 4; ++i)
+      if (sets[i] >= 0 && sets[i] != t.uv_set)
+        warnings.push_back(names[i] + ".texCoord: " + std::to_string(sets[i]) + ", but " + names[chosen] +
+                           " reads TEXCOORD_" + std::to_string(t.uv_set) + "; clpt gives a material one coordinate set, so this texture reads TEXCOORD_" +
+                           std::to_string(t.uv_set) + " too");
+  }
   t.normal_scale = m.normalTexture.scale;
   if (!std::isfinite(t.normal_scale) || std::fabs(t.normal_scale) > 100)
     gltf_fail(element + ".normalTexture.scale", "must be a number in [-100, 100]");

@@ -14,6 +14,10 @@
 
 namespace clpt {
 
+// The highest texture coordinate set (TEXCOORD_n) a texture may name: glTF allows any n, exporters
+// write one or two; a larger texCoord is refused rather than looked up.
+constexpr int kMaxUvSet = 15;
+
 // Every material of the file, in order, each value checked against the schema's range; warnings
 // ("ELEMENT: MESSAGE") appended to `warnings`. Textures (docs/textures.md): baseColorTexture,
 // metallicRoughnessTexture, emissiveTexture and normalTexture with their samplers and

@@ -80,7 +80,7 @@ std::vector<std::array<uint32_t, 3>> assemble(const std::vector<uint32_t>& v, in
 
 // The primitive's vertices and triangles in world space (normals not yet normalised).
 LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, const Affine& world, int mode,
-                          const std::string& element, std::vector<std::array<double, 2>>& uvs,
+                          const std::string& element, int uv_set, std::vector<std::array<double, 2>>& uvs,
                           std::vector<std::array<double, 4>>& tangents, std::vector<std::array<double, 4>>& colors) {
   LocalMesh local;
   const int position = p.attributes.at("POSITION");
@@ -104,8 +104,10 @@ LocalMesh world_primitive(PrimitiveContext& c, const tinygltf::Primitive& p, con
       local.normals.push_back(transform_normal(world, q));
     }
   }
-  if (const auto t = p.attributes.find("TEXCOORD_0"); t != p.attributes.end()) {
-    const std::vector<double> values = same_count("TEXCOORD_0", t->second, AccessorUse::Texcoord);
+  // The one coordinate set the material's textures read (gltf_material.cpp: their texCoord).
+  const std::string texcoord = "TEXCOORD_" + std::to_string(uv_set);
+  if (const auto t = p.attributes.find(texcoord); t != p.attributes.end()) {
+    const std::vector<double> values = same_count(texcoord.c_str(), t->second, AccessorUse::Texcoord);
     // glTF's (0, 0) is the image's top-left; clpt keeps OBJ's bottom-left (scene.h).
     for (size_t i = 0; i + 1 < values.size(); i += 2) uvs.push_back({values[i], 1 - values[i + 1]});
   }
@@ -168,7 +170,11 @@ void append_primitive(PrimitiveContext& c, const NodeInstance& instance, int mes
   m.name = (mesh.name.empty() ? "meshes[" + std::to_string(mesh_index) + "]" : mesh.name) + "/primitive " + std::to_string(index);
   m.gltf_element = "nodes[" + std::to_string(instance.node) + "] " + element;
   m.material = p.material >= 0 ? c.materials[size_t(p.material)] : default_material();
-  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, m.uvs, m.tangents, m.colors);
+  const int uv_set = m.material.textures.uv_set;
+  if (uv_set > 0 && m.material.textures.any() && !p.attributes.count("TEXCOORD_" + std::to_string(uv_set)))
+    gltf_fail(element + ".attributes", "no TEXCOORD_" + std::to_string(uv_set) + ", which the textures of its material (materials[" +
+                                           std::to_string(p.material) + "]) read by their texCoord");
+  const LocalMesh local = world_primitive(c, p, instance.world, mode, element, uv_set, m.uvs, m.tangents, m.colors);
   const size_t dropped = place_mesh(local, m);  // the identity placement: drops degenerate triangles
   for (size_t i = 0; i < m.positions.size(); ++i)
     for (double x : m.positions[i])

@@ -71,6 +71,9 @@ struct MaterialTextures {
   TextureRef emission;
   TextureRef normal;
   double normal_scale = 1;
+  // The texture coordinate set every texture of the material reads: glTF's texCoord (TEXCOORD_n;
+  // gltf_material.cpp picks one per material), 0 elsewhere. A mesh carries that one set (its uvs).
+  int uv_set = 0;
   // glTF alphaMode (docs/gltf.md, "Alpha"): the alpha is `alpha` (baseColorFactor[3]) x the base
   // colour texture's alpha channel (1 without one). MASK: the surface is there where alpha >=
   // alpha_cutoff; BLEND: there with probability alpha (coverage); OPAQUE ignores alpha. Carried
