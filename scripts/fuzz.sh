@@ -9,6 +9,7 @@
 # good and bad, and assimp-testmodels' small glTF 2.0 files, each behind its name byte) and
 # tests/fuzz/fuzz_options (seeds: a few command lines) on working corpora kept in build-fuzz, so
 # nothing is written into the source tree.
+# The harnesses run side by side, as many at once as there are processors.
 #   scripts/fuzz.sh [SECONDS]     fuzz each harness for SECONDS (default 60)
 #   scripts/fuzz.sh --runs N      fuzz N inputs each
 # Anything after "--" goes to libFuzzer, e.g. scripts/fuzz.sh 600 -- -fork=2
@@ -90,8 +91,20 @@ fuzz_target() {
     grep -E 'ERROR: |runtime error|SUMMARY|fuzz_[a-z_]*: ' "$log" | head -n 20 >&2 || true
     for f in "${new[@]}"; do echo "  finding: $f"; done
     echo "$name: FAILED (exit $status); full log: $log" >&2
-    failed=1
+    return 1
   fi
+}
+
+# The harnesses run side by side, one per processor (each is a single process): start_fuzz
+# waits for a free processor, then starts fuzz_target in the background; a failed one sets failed.
+running=0
+start_fuzz() {
+  if [[ $running -ge $(nproc) ]]; then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
+  fuzz_target "$@" &
+  running=$((running + 1))
 }
 
 # Seeds for the option parser: a few real command lines, arguments separated by NUL bytes.
@@ -118,10 +131,6 @@ for f in "$CLPT_ROOT"/tests/scenes/meshes/* "$CLPT_ROOT"/tests/scenes/bad/meshes
   [[ -e "$seed" ]] || { mesh_type_byte "$f"; cat "$f"; } >"$seed"
 done
 
-fuzz_target fuzz_scene_loader "$CLPT_ROOT/tests/fuzz/scene.dict" \
-    "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml
-fuzz_target fuzz_mesh_file "$CLPT_ROOT/tests/fuzz/mesh.dict" "$mesh_seeds"/*
-fuzz_target fuzz_assimp_mesh -
 # glTF seeds: the first byte names the file (0: fuzz.glb, 1: fuzz.gltf; fuzz_gltf.cpp). glTF
 # files are larger than the other formats' seeds: inputs up to 64 kB.
 gltf_seeds=$work/gltf-seeds
@@ -135,6 +144,14 @@ for f in "$gltf_seeds"/written/*.gl* /usr/share/assimp/models/glTF2/*/*.gl* \
   case "${f,,}" in *.glb) byte='\000' ;; *) byte='\001' ;; esac
   [[ -e "$seed" ]] || { printf "$byte"; cat "$f"; } >"$seed"
 done
-max_len=65536 fuzz_target fuzz_gltf "$CLPT_ROOT/tests/fuzz/gltf.dict" "$gltf_seeds"/*.gl*
-fuzz_target fuzz_options "$CLPT_ROOT/tests/fuzz/options.dict" "$option_seeds"/*
+start_fuzz fuzz_scene_loader "$CLPT_ROOT/tests/fuzz/scene.dict" \
+    "$CLPT_ROOT"/scenes/*.toml "$CLPT_ROOT"/tests/scenes/bad/*.toml
+start_fuzz fuzz_mesh_file "$CLPT_ROOT/tests/fuzz/mesh.dict" "$mesh_seeds"/*
+start_fuzz fuzz_assimp_mesh -
+max_len=65536 start_fuzz fuzz_gltf "$CLPT_ROOT/tests/fuzz/gltf.dict" "$gltf_seeds"/*.gl*
+start_fuzz fuzz_options "$CLPT_ROOT/tests/fuzz/options.dict" "$option_seeds"/*
+while [[ $running -gt 0 ]]; do
+  wait -n || failed=1
+  running=$((running - 1))
+done
 exit $failed

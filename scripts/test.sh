@@ -18,7 +18,7 @@ if [[ $# -eq 0 ]]; then
 else
   ctest --output-on-failure -j "$(nproc)" "$@"
 fi
-# The whole suite (no ctest arguments) goes on with 40 s fuzz runs of the scene loader, mesh
+# The whole suite (no ctest arguments) goes on with 40 s fuzz runs (side by side, one per processor) of the scene loader, mesh
 # files and the option parser, then the unit and bad-input tests under ASan + UBSan, each in its own build
 # directory (about 6 minutes more on 2 cores).
 if [[ $# -eq 0 ]]; then
