@@ -155,28 +155,37 @@ CLPT_INLINE float half_bits_to_float(uint h) {
   return as_float(exponent == 0u ? subnormal : (exponent == 31u ? special : normal));
 }
 
-/* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). */
+/* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). A kernel compiled for one
+ * storage reads it typed. One compiled for several reads the aligned 32-bit word holding the
+ * sample (byte offset at << storage: the storage's value is log2 of its size) and takes the
+ * sample's bits out of it: one read per sample rather than one per storage, which in a bilinear
+ * RGBA lookup is 16 gathers rather than 48, and a third of the code, PoCL's cold compile of the
+ * widest texture kernels included (docs/textures.md, "Cost"). The host starts every image's texels
+ * on a 16-byte boundary and pads them to one (device_textures.cpp), so the word lies in the
+ * image's own bytes; texels are little-endian, as on every OpenCL device clpt runs on. */
 CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint at) {
-  float v = 0.0f;
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
-  v = (float)texels[at] * (1.0f / 255.0f);
-#endif
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_HALF)
-#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_HALF)
-  v = half_bits_to_float(((__global const ushort*)texels)[at]);
+#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_U8)
+  (void)storage;
+  return (float)texels[at] * (1.0f / 255.0f);
+#elif CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_HALF)
+  (void)storage;
+  return half_bits_to_float(((__global const ushort*)texels)[at]);
+#elif CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_FLOAT)
+  (void)storage;
+  return ((__global const float*)texels)[at];
 #else
-  v = (storage & 1u) != 0u ? half_bits_to_float(((__global const ushort*)texels)[at]) : v;
-#endif
+  const uint byte = at << storage;
+  const uint word = ((__global const uint*)texels)[byte >> 2];
+  const uint bits = word >> ((byte & 3u) * 8u);
+  float v = (float)(bits & 0xffu) * (1.0f / 255.0f);
+#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_HALF)
+  v = (storage & 1u) != 0u ? half_bits_to_float(bits & 0xffffu) : v;
 #endif
 #if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_FLOAT)
-#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_FLOAT)
-  v = ((__global const float*)texels)[at];
-#else
-  v = (storage & 2u) != 0u ? ((__global const float*)texels)[at] : v;
+  v = (storage & 2u) != 0u ? as_float(word) : v;
 #endif
-#endif
-  (void)storage;
   return v;
+#endif
 }
 
 /* The texel (x, y) as linear RGBA. Every read stays inside the texel's own channels (channel k

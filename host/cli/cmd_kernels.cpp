@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "kernels/kernel_source.h"
@@ -27,6 +29,7 @@ struct KernelsOptions {
   std::string directory;
   std::string scene;
   std::string device = "gpu";
+  std::string only;  // cold-builds: only the variants whose name contains this
 };
 
 int list_variants() {
@@ -69,10 +72,15 @@ int budget(const KernelsOptions& o) {
 // PoCL compiles the work-group functions): the cold build a user meets on first use of a feature
 // combination (docs/performance.md, "Fixed costs"). A measurement, not a test: exit 0.
 int cold_builds(const KernelsOptions& o) {
+  std::vector<KernelVariant> variants;
+  for (const KernelVariant& v : covering_kernel_variants())
+    if (v.name().find(o.only) != std::string::npos) variants.push_back(v);
+  if (variants.empty())
+    throw Error(ExitCode::Usage, "kernels cold-builds: --only " + o.only + ": no variant's name contains it (clpt kernels list)");
   setenv("POCL_KERNEL_CACHE", "0", 1);  // before OpenCL is loaded: PoCL reads it once
   const Scene diffuse = load_scene_file(o.scene);
   double worst_specialised = 0, worst_generic = 0;
-  for (const KernelVariant& v : covering_kernel_variants()) {
+  for (const KernelVariant& v : variants) {
     RenderRequest request;
     request.use_kernel_cache = false;
     request.scene = diffuse;
@@ -119,6 +127,7 @@ std::function<int()> add_kernels_command(CLI::App& app) {
                      "program build plus first launch, seconds");
   cold->add_option("--scene", o->scene, "The book's diffuse scene (scenes/diffuse.toml)")->required();
   cold->add_option("--device", o->device, "The device, as for render --device")->capture_default_str();
+  cold->add_option("--only", o->only, "Only the variants whose name contains this text (clpt kernels list)");
   return [o, list, emit, cold] {
     if (list->parsed()) return list_variants();
     if (emit->parsed()) return emit_variants(*o);
