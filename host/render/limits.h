@@ -22,9 +22,10 @@ constexpr size_t kMaxSpheres = 4096;
 // Triangles over all meshes: their indices are 31-bit in the hierarchy's leaves and signed 32-bit
 // in a hit; 2^27 keeps every index (and the 2n - 1 nodes) far from either.
 constexpr uint64_t kMaxTriangles = 1ull << 27;
-// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most two hierarchy
-// nodes (2 x 32; a hierarchy over n primitives has at most 2n - 1 nodes).
-constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 2 * 32;
+// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most one 4-wide
+// hierarchy node (128: each node of the collapsed tree stands for a distinct interior node of the
+// binary tree over n primitives, which has n - 1 of them; one node for a tree that is one leaf).
+constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 128;
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
 // kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose

@@ -321,7 +321,7 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.bvh_nodes > 0) {
       std::snprintf(line, sizeof line,
-                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s (%.4f CPU-s) on "
+                    "    hierarchy: %llu triangles, %llu spheres, %llu 4-wide nodes, depth %d, built in %.4f s (%.4f CPU-s) on "
                     "the host (%s builder, %d thread%s); %.1f device B/triangle\n",
                     static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
                     static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.bvh_build_cpu_s,
