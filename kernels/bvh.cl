@@ -68,6 +68,9 @@ CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __glob
 #ifndef CLPT_BVH_STACK_DISTANCES
 #define CLPT_BVH_STACK_DISTANCES 0
 #endif
+#ifndef CLPT_BVH_UNSORTED
+#define CLPT_BVH_UNSORTED 0
+#endif
 /* Four reals, one per child slot of a node: double4 in the double preset, as `real` is double. */
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 typedef double4 real4;
@@ -203,11 +206,18 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       const real4 t = bvh_node_entries(n, &box, hit->t);
       real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
       uint s0 = 0u, s1 = 1u, s2 = 2u, s3 = 3u;
+#if CLPT_BVH_UNSORTED
+      /* The nearest to the front; the others keep their slot order. */
+      bvh_order(&t0, &s0, &t1, &s1);
+      bvh_order(&t0, &s0, &t2, &s2);
+      bvh_order(&t0, &s0, &t3, &s3);
+#else
       bvh_order(&t0, &s0, &t1, &s1);
       bvh_order(&t2, &s2, &t3, &s3);
       bvh_order(&t0, &s0, &t2, &s2);
       bvh_order(&t1, &s1, &t3, &s3);
       bvh_order(&t1, &s1, &t2, &s2);
+#endif
       const uint base = node << 2;
 #if CLPT_BVH_STACK_DISTANCES
       if (t3 < CLPT_NO_HIT) { stack_t[depth] = t3; stack[depth++] = base | s3; }

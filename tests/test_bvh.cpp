@@ -155,6 +155,8 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
     EXPECT_TRUE(bvh.binary.empty());
     EXPECT_LE(bvh.stack_need, CLPT_BVH_STACK);
     EXPECT_GE(bvh.binary_depth, bvh.depth);
+    // At most (2n + 2) / 3 nodes for n primitives (render/limits.h, kMaxBvhNodes).
+    EXPECT_LE(3 * bvh.nodes.size(), 2 * (bvh.triangle_order.size() + bvh.sphere_order.size()) + 2);
     std::vector<int> tri_seen(ds.triangles.size(), 0), sphere_seen(ds.spheres.size(), 0);
     std::vector<int> parents(bvh.nodes.size(), 0);
     std::vector<int> need(bvh.nodes.size(), 0);
