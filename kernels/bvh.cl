@@ -124,7 +124,9 @@ CLPT_INLINE BoxRay box_ray(Vec3 o, Vec3 inv) {
  * in [0, t_max): the slab test on all four slots at once. The far distance is widened by
  * 1 + 2 gamma(3) (Ize). */
 CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay* r, real t_max) {
-  __global const float* planes = node->lower_x; /* lower_x, upper_x, lower_y, ... 4 floats each */
+  /* The node as 32 floats: lower_x, upper_x, lower_y, ... 4 each, then child and count (a flat
+   * array: a plane picked by offset does not index past one field's array). */
+  __global const float* planes = (__global const float*)node;
   const real4 tnx = (bvh_load4(planes + r->near_x) - r->ox) * r->ix;
   const real4 tfx = (bvh_load4(planes + (4u - r->near_x)) - r->ox) * r->ix;
   const real4 tny = (bvh_load4(planes + 8u + r->near_y) - r->oy) * r->iy;
@@ -140,7 +142,7 @@ CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay
 #if !CLPT_BVH_STACK_DISTANCES
 /* The entry distance into child `slot`'s box alone (a popped entry's test), as bvh_node_entries. */
 CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, const BoxRay* r, real t_max) {
-  __global const float* planes = node->lower_x;
+  __global const float* planes = (__global const float*)node;
   const real tnx = ((real)planes[r->near_x + slot] - r->ox1) * r->ix1;
   const real tfx = ((real)planes[4u - r->near_x + slot] - r->ox1) * r->ix1;
   const real tny = ((real)planes[8u + r->near_y + slot] - r->oy1) * r->iy1;

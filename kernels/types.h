@@ -86,9 +86,12 @@ typedef struct GpuSphere {
 #define CLPT_BVH_SPHERE_LEAF 0x80000000u
 #define CLPT_BVH_COUNT_MASK 0x7fffffffu
 #define CLPT_BVH_WIDTH 4
-/* Traversal stack entries (bvh.cl): a node pushes up to 3 children while one is visited, so the
- * host computes the deepest stack its tree can need (Bvh::stack_need) and refuses one past this. */
-#define CLPT_BVH_STACK 64
+/* Traversal stack entries (bvh.cl; 192 bytes of private memory, as the binary tree's): a node
+ * pushes up to 3 children while one is visited, so the host computes the deepest stack its tree
+ * can need (Bvh::stack_need: about 1.5x a balanced binary tree's depth, whose log2 of 2^27
+ * triangles is 27) and refuses one past this; the builders' binary trees are held to this many
+ * levels too. */
+#define CLPT_BVH_STACK 48
 typedef struct GpuBvhNode {
   float lower_x[4]; /* children's box minimum corners, camera-relative world units */
   float upper_x[4]; /* and maximum corners */

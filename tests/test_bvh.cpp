@@ -14,6 +14,7 @@
 #include "device_test_util.h"
 #include "mesh_test_util.h"
 #include "scene/device_scene.h"
+#include "util/error.h"
 
 namespace clpt::test {
 namespace {
@@ -287,6 +288,49 @@ TEST(BvhBuild, CollapseOpensTheLargestChildFirst) {
   EXPECT_EQ(bvh.depth, 2);
   EXPECT_EQ(bvh.stack_need, 3 + 1);
   EXPECT_TRUE(bvh.binary.empty());
+}
+
+// A binary tree whose collapse needs 3 stack entries for every 2 binary levels (each node X has two
+// interior children A and B, A over two leaves and B over a leaf and the next X): 22 such levels
+// (44 binary levels, within the builders' CLPT_BVH_STACK) could need 3 * 22 entries, more than
+// the kernels' stack; the collapse refuses it, naming the stack.
+TEST(BvhBuild, CollapseRefusesATreeItsStackCannotHold) {
+  const int levels = 22;
+  std::vector<BvhPrimitive> prims(size_t(4 * levels + 1));
+  for (size_t i = 0; i < prims.size(); ++i) {
+    prims[i].box.lower = {float(i), 0, 0};
+    prims[i].box.upper = {float(i) + 1, 1, 1};
+    prims[i].index = uint32_t(i);
+  }
+  BvhBox all;
+  all.lower = {0, 0, 0};
+  all.upper = {float(prims.size()), 1, 1};
+  Bvh bvh;
+  size_t next = 0;
+  auto leaf = [&] { make_bvh_leaf(bvh, push_bvh_node(bvh, all), &prims[next], &prims[next] + 1), ++next; };
+  for (int level = 0; level < levels; ++level) {
+    const uint32_t x = push_bvh_node(bvh, all);
+    const uint32_t a = push_bvh_node(bvh, all);
+    leaf();
+    bvh.binary[a].first = uint32_t(bvh.binary.size());
+    leaf();
+    bvh.binary[x].first = uint32_t(bvh.binary.size());
+    const uint32_t b = push_bvh_node(bvh, all);
+    leaf();
+    bvh.binary[b].first = uint32_t(bvh.binary.size());
+  }
+  leaf();  // the last B's second child
+  const auto [code, message] = [&] {
+    try {
+      collapse_bvh(bvh);
+    } catch (const Error& e) {
+      return std::make_pair(e.code(), std::string(e.what()));
+    }
+    return std::make_pair(ExitCode::Ok, std::string());
+  }();
+  EXPECT_EQ(code, ExitCode::BadScene);
+  EXPECT_NE(message.find("traversal stack"), std::string::npos) << message;
+  EXPECT_NE(message.find(std::to_string(CLPT_BVH_STACK)), std::string::npos) << message;
 }
 
 TEST(BvhTraversal, ClosestHitEqualsBruteForceOverEveryPrimitive) {
