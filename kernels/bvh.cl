@@ -82,13 +82,13 @@ typedef int4 real4_mask;
 #define bvh_load4(p) vload4(0, (p))
 #endif
 
-/* The ray as the slab tests use it: origin and 1/d splatted over the four slots, and per axis the
- * offset (0 or 4 floats) of the near plane in a node's lower/upper pair: the lower corner when
- * the direction's component is positive. Picking the planes by the ray's signs instead of
- * min/max makes an inverted box (an empty slot, types.h) a miss for every ray. */
+/* The ray as the slab tests use it: origin and 1/d splatted over the four slots, and per axis
+ * whether the direction's component is negative, which makes the upper corner the near plane.
+ * Picking the planes by the ray's signs instead of min/max makes an inverted box (an empty slot,
+ * types.h) a miss for every ray. */
 typedef struct BoxRay {
   real4 ox, oy, oz, ix, iy, iz;
-  uint near_x, near_y, near_z;
+  bool neg_x, neg_y, neg_z;
   real ox1, oy1, oz1, ix1, iy1, iz1; /* the same, scalar, for one slot's box (bvh_slot_entry) */
 } BoxRay;
 
@@ -108,9 +108,9 @@ CLPT_INLINE BoxRay box_ray(Vec3 o, Vec3 inv) {
   r.ix = (real4)(inv.x);
   r.iy = (real4)(inv.y);
   r.iz = (real4)(inv.z);
-  r.near_x = inv.x < (real)0 ? 4u : 0u;
-  r.near_y = inv.y < (real)0 ? 4u : 0u;
-  r.near_z = inv.z < (real)0 ? 4u : 0u;
+  r.neg_x = inv.x < (real)0;
+  r.neg_y = inv.y < (real)0;
+  r.neg_z = inv.z < (real)0;
   r.ox1 = o.x;
   r.oy1 = o.y;
   r.oz1 = o.z;
@@ -124,15 +124,12 @@ CLPT_INLINE BoxRay box_ray(Vec3 o, Vec3 inv) {
  * in [0, t_max): the slab test on all four slots at once. The far distance is widened by
  * 1 + 2 gamma(3) (Ize). */
 CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay* r, real t_max) {
-  /* The node as 32 floats: lower_x, upper_x, lower_y, ... 4 each, then child and count (a flat
-   * array: a plane picked by offset does not index past one field's array). */
-  __global const float* planes = (__global const float*)node;
-  const real4 tnx = (bvh_load4(planes + r->near_x) - r->ox) * r->ix;
-  const real4 tfx = (bvh_load4(planes + (4u - r->near_x)) - r->ox) * r->ix;
-  const real4 tny = (bvh_load4(planes + 8u + r->near_y) - r->oy) * r->iy;
-  const real4 tfy = (bvh_load4(planes + 8u + (4u - r->near_y)) - r->oy) * r->iy;
-  const real4 tnz = (bvh_load4(planes + 16u + r->near_z) - r->oz) * r->iz;
-  const real4 tfz = (bvh_load4(planes + 16u + (4u - r->near_z)) - r->oz) * r->iz;
+  const real4 lx = bvh_load4(node->lower_x), ux = bvh_load4(node->upper_x);
+  const real4 ly = bvh_load4(node->lower_y), uy = bvh_load4(node->upper_y);
+  const real4 lz = bvh_load4(node->lower_z), uz = bvh_load4(node->upper_z);
+  const real4 tnx = ((r->neg_x ? ux : lx) - r->ox) * r->ix, tfx = ((r->neg_x ? lx : ux) - r->ox) * r->ix;
+  const real4 tny = ((r->neg_y ? uy : ly) - r->oy) * r->iy, tfy = ((r->neg_y ? ly : uy) - r->oy) * r->iy;
+  const real4 tnz = ((r->neg_z ? uz : lz) - r->oz) * r->iz, tfz = ((r->neg_z ? lz : uz) - r->oz) * r->iz;
   const real4 entry = fmax(fmax(tnx, tny), fmax(tnz, (real4)((real)0)));
   const real4 far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f; /* 1 + 2 gamma(3) */
   const real4_mask in = (entry <= far) & (entry < (real4)(t_max));
@@ -142,13 +139,12 @@ CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay
 #if !CLPT_BVH_STACK_DISTANCES
 /* The entry distance into child `slot`'s box alone (a popped entry's test), as bvh_node_entries. */
 CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, const BoxRay* r, real t_max) {
-  __global const float* planes = (__global const float*)node;
-  const real tnx = ((real)planes[r->near_x + slot] - r->ox1) * r->ix1;
-  const real tfx = ((real)planes[4u - r->near_x + slot] - r->ox1) * r->ix1;
-  const real tny = ((real)planes[8u + r->near_y + slot] - r->oy1) * r->iy1;
-  const real tfy = ((real)planes[12u - r->near_y + slot] - r->oy1) * r->iy1;
-  const real tnz = ((real)planes[16u + r->near_z + slot] - r->oz1) * r->iz1;
-  const real tfz = ((real)planes[20u - r->near_z + slot] - r->oz1) * r->iz1;
+  const real lx = node->lower_x[slot], ux = node->upper_x[slot];
+  const real ly = node->lower_y[slot], uy = node->upper_y[slot];
+  const real lz = node->lower_z[slot], uz = node->upper_z[slot];
+  const real tnx = ((r->neg_x ? ux : lx) - r->ox1) * r->ix1, tfx = ((r->neg_x ? lx : ux) - r->ox1) * r->ix1;
+  const real tny = ((r->neg_y ? uy : ly) - r->oy1) * r->iy1, tfy = ((r->neg_y ? ly : uy) - r->oy1) * r->iy1;
+  const real tnz = ((r->neg_z ? uz : lz) - r->oz1) * r->iz1, tfz = ((r->neg_z ? lz : uz) - r->oz1) * r->iz1;
   const real entry = fmax(fmax(tnx, tny), fmax(tnz, (real)0));
   const real far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f;
   return entry <= far && entry < t_max ? entry : CLPT_NO_HIT;
