@@ -63,14 +63,6 @@ CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __glob
 }
 
 #if CLPT_HAS_BVH
-/* 1: a stack entry keeps its entry distance, compared with hit->t when popped, instead of its box
- * tested again (the same answer: the entry distance does not depend on hit->t). */
-#ifndef CLPT_BVH_STACK_DISTANCES
-#define CLPT_BVH_STACK_DISTANCES 0
-#endif
-#ifndef CLPT_BVH_UNSORTED
-#define CLPT_BVH_UNSORTED 0
-#endif
 /* Four reals, one per child slot of a node: double4 in the double preset, as `real` is double. */
 #if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
 typedef double4 real4;
@@ -136,7 +128,6 @@ CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay
   return in ? entry : (real4)(CLPT_NO_HIT);
 }
 
-#if !CLPT_BVH_STACK_DISTANCES
 /* The entry distance into child `slot`'s box alone (a popped entry's test), as bvh_node_entries. */
 CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, const BoxRay* r, real t_max) {
   const real lx = node->lower_x[slot], ux = node->upper_x[slot];
@@ -149,7 +140,6 @@ CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, cons
   const real far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f;
   return entry <= far && entry < t_max ? entry : CLPT_NO_HIT;
 }
-#endif
 
 /* Orders two (distance, slot) pairs, the nearer first: one comparator of the sorting network. */
 CLPT_INLINE void bvh_order(real* ta, uint* sa, real* tb, uint* sb) {
@@ -188,9 +178,6 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
   const BoxRay box = box_ray(v3_unpaired(o), v3_unpaired(inverse_direction(d)));
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
-#if CLPT_BVH_STACK_DISTANCES
-  real stack_t[CLPT_BVH_STACK];
-#endif
   uint depth = 0u;
   uint node = 0u;   /* the node to open, when `open` */
   bool open = true; /* false: the entry `ref` just came off the stack */
@@ -204,28 +191,15 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       const real4 t = bvh_node_entries(n, &box, hit->t);
       real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
       uint s0 = 0u, s1 = 1u, s2 = 2u, s3 = 3u;
-#if CLPT_BVH_UNSORTED
-      /* The nearest to the front; the others keep their slot order. */
-      bvh_order(&t0, &s0, &t1, &s1);
-      bvh_order(&t0, &s0, &t2, &s2);
-      bvh_order(&t0, &s0, &t3, &s3);
-#else
       bvh_order(&t0, &s0, &t1, &s1);
       bvh_order(&t2, &s2, &t3, &s3);
       bvh_order(&t0, &s0, &t2, &s2);
       bvh_order(&t1, &s1, &t3, &s3);
       bvh_order(&t1, &s1, &t2, &s2);
-#endif
       const uint base = node << 2;
-#if CLPT_BVH_STACK_DISTANCES
-      if (t3 < CLPT_NO_HIT) { stack_t[depth] = t3; stack[depth++] = base | s3; }
-      if (t2 < CLPT_NO_HIT) { stack_t[depth] = t2; stack[depth++] = base | s2; }
-      if (t1 < CLPT_NO_HIT) { stack_t[depth] = t1; stack[depth++] = base | s1; }
-#else
       if (t3 < CLPT_NO_HIT) stack[depth++] = base | s3;
       if (t2 < CLPT_NO_HIT) stack[depth++] = base | s2;
       if (t1 < CLPT_NO_HIT) stack[depth++] = base | s1;
-#endif
       if (t0 < CLPT_NO_HIT) {
         count = n->count[s0];
         first = n->child[s0];
@@ -238,13 +212,11 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
     } else {
       __global const GpuBvhNode* n = &scene->nodes[ref >> 2];
       const uint slot = ref & 3u;
-#if CLPT_BVH_STACK_DISTANCES
-      const bool behind = stack_t[depth] >= hit->t;
-#else
-      const bool behind = bvh_slot_entry(n, slot, &box, hit->t) >= CLPT_NO_HIT;
-#endif
-      if (!behind) {
-        /* Pushed before a nearer hit was found, and now wholly behind it: not visited (else). */
+      /* Pushed before a nearer hit was found, and now wholly behind it: not visited. Its box is
+       * tested again rather than its entry distance kept on the stack (the same answer, as the
+       * entry distance does not depend on hit->t), which would double the stack, a GPU's scratch
+       * memory, and measured no faster on the CPU (docs/performance.md, "The 4-wide hierarchy"). */
+      if (bvh_slot_entry(n, slot, &box, hit->t) < CLPT_NO_HIT) {
         count = n->count[slot];
         first = n->child[slot];
         leaf = count != 0u;
