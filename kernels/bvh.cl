@@ -215,7 +215,7 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       /* Pushed before a nearer hit was found, and now wholly behind it: not visited. Its box is
        * tested again rather than its entry distance kept on the stack (the same answer, as the
        * entry distance does not depend on hit->t), which would double the stack, a GPU's scratch
-       * memory, and measured no faster on the CPU (docs/performance.md, "The 4-wide hierarchy"). */
+       * memory, and measured no faster on the CPU (docs/performance.md, "Traversal"). */
       if (bvh_slot_entry(n, slot, &box, hit->t) < CLPT_NO_HIT) {
         count = n->count[slot];
         first = n->child[slot];
