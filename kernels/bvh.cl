@@ -6,9 +6,10 @@
  * builds). Both queries are written once here and called by the stage functions of path.cl, so
  * the megakernel and the wavefront traverse alike.
  *
- * Traversal: a fixed stack of CLPT_BVH_STACK node indices (the host refuses deeper hierarchies);
- * at an interior node both children's boxes are tested and the nearer is visited first, the
- * farther pushed. The slab test's far distance is widened by 1 + 2 gamma(3) (Ize, "Robust BVH Ray
+ * Traversal: the hierarchy is 4-wide (GpuBvhNode, types.h); a node's four child boxes are tested in
+ * one vector slab test (float4, double4 in the double preset), the hit children visited nearest
+ * first, through a fixed stack of CLPT_BVH_STACK entries (the host refuses a tree that could need
+ * more). The slab test's far distance is widened by 1 + 2 gamma(3) (Ize, "Robust BVH Ray
  * Traversal", JCGT 2013), with boxes rounded outwards on the host, so no rounding makes a ray miss
  * a box that holds its hit. Compiled only with CLPT_HAS_BVH (kernel_options.cpp); without, the
  * queries are the sphere loop alone and no traversal code exists in the kernel.
@@ -62,21 +63,26 @@ CLPT_INLINE SceneBuffers scene_buffers(__global const GpuSphere* spheres, __glob
 }
 
 #if CLPT_HAS_BVH
-/* Entry distance of the ray into the box, or CLPT_NO_HIT when it misses it in [0, t_max]. */
-CLPT_INLINE real box_entry(__global const GpuBvhNode* node, Vec3 o, Vec3 inv_d, real t_max) {
-  const real x0 = ((real)node->lower[0] - o.x) * inv_d.x, x1 = ((real)node->upper[0] - o.x) * inv_d.x;
-  const real y0 = ((real)node->lower[1] - o.y) * inv_d.y, y1 = ((real)node->upper[1] - o.y) * inv_d.y;
-  const real z0 = ((real)node->lower[2] - o.z) * inv_d.z, z1 = ((real)node->upper[2] - o.z) * inv_d.z;
-  const real tx_near = x0 < x1 ? x0 : x1, tx_far = x0 < x1 ? x1 : x0;
-  const real ty_near = y0 < y1 ? y0 : y1, ty_far = y0 < y1 ? y1 : y0;
-  const real tz_near = z0 < z1 ? z0 : z1, tz_far = z0 < z1 ? z1 : z0;
-  const real t_near_xy = tx_near > ty_near ? tx_near : ty_near;
-  const real t_near = t_near_xy > tz_near ? t_near_xy : tz_near;
-  const real t_far_xy = tx_far < ty_far ? tx_far : ty_far;
-  const real t_far = (t_far_xy < tz_far ? t_far_xy : tz_far) * (real)1.0000004f; /* 1 + 2 gamma(3) */
-  const real entry = t_near > (real)0 ? t_near : (real)0;
-  return entry <= t_far && entry < t_max ? entry : CLPT_NO_HIT;
-}
+/* Four reals, one per child slot of a node: double4 in the double preset, as `real` is double. */
+#if CLPT_PRECISION == CLPT_PRECISION_DOUBLE
+typedef double4 real4;
+typedef long4 real4_mask;
+#define bvh_load4(p) convert_double4(vload4(0, (p)))
+#else
+typedef float4 real4;
+typedef int4 real4_mask;
+#define bvh_load4(p) vload4(0, (p))
+#endif
+
+/* The ray as the slab tests use it: origin and 1/d splatted over the four slots, and per axis
+ * whether the direction's component is negative, which makes the upper corner the near plane.
+ * Picking the planes by the ray's signs instead of min/max makes an inverted box (an empty slot,
+ * types.h) a miss for every ray. */
+typedef struct BoxRay {
+  real4 ox, oy, oz, ix, iy, iz;
+  bool neg_x, neg_y, neg_z;
+  real ox1, oy1, oz1, ix1, iy1, iz1; /* the same, scalar, for one slot's box (bvh_slot_entry) */
+} BoxRay;
 
 /* 1/d per component; a zero component becomes 1/(+-1e-30), so that 0 * inf never makes a NaN. */
 CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
@@ -86,12 +92,79 @@ CLPT_INLINE Vec3 inverse_direction(Vec3 d) {
             (real)1 / (fabs(d.z) > tiny ? d.z : copysign(tiny, d.z)));
 }
 
+CLPT_INLINE BoxRay box_ray(Vec3 o, Vec3 inv) {
+  BoxRay r;
+  r.ox = (real4)(o.x);
+  r.oy = (real4)(o.y);
+  r.oz = (real4)(o.z);
+  r.ix = (real4)(inv.x);
+  r.iy = (real4)(inv.y);
+  r.iz = (real4)(inv.z);
+  r.neg_x = inv.x < (real)0;
+  r.neg_y = inv.y < (real)0;
+  r.neg_z = inv.z < (real)0;
+  r.ox1 = o.x;
+  r.oy1 = o.y;
+  r.oz1 = o.z;
+  r.ix1 = inv.x;
+  r.iy1 = inv.y;
+  r.iz1 = inv.z;
+  return r;
+}
+
+/* Entry distances of the ray into the four child boxes of `node`, CLPT_NO_HIT for a box it misses
+ * in [0, t_max): the slab test on all four slots at once. The far distance is widened by
+ * 1 + 2 gamma(3) (Ize). */
+CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay* r, real t_max) {
+  const real4 lx = bvh_load4(node->lower_x), ux = bvh_load4(node->upper_x);
+  const real4 ly = bvh_load4(node->lower_y), uy = bvh_load4(node->upper_y);
+  const real4 lz = bvh_load4(node->lower_z), uz = bvh_load4(node->upper_z);
+  const real4 tnx = ((r->neg_x ? ux : lx) - r->ox) * r->ix, tfx = ((r->neg_x ? lx : ux) - r->ox) * r->ix;
+  const real4 tny = ((r->neg_y ? uy : ly) - r->oy) * r->iy, tfy = ((r->neg_y ? ly : uy) - r->oy) * r->iy;
+  const real4 tnz = ((r->neg_z ? uz : lz) - r->oz) * r->iz, tfz = ((r->neg_z ? lz : uz) - r->oz) * r->iz;
+  const real4 entry = fmax(fmax(tnx, tny), fmax(tnz, (real4)((real)0)));
+  const real4 far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f; /* 1 + 2 gamma(3) */
+  const real4_mask in = (entry <= far) & (entry < (real4)(t_max));
+  return in ? entry : (real4)(CLPT_NO_HIT);
+}
+
+/* The entry distance into child `slot`'s box alone (a popped entry's test), as bvh_node_entries. */
+CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, const BoxRay* r, real t_max) {
+  const real lx = node->lower_x[slot], ux = node->upper_x[slot];
+  const real ly = node->lower_y[slot], uy = node->upper_y[slot];
+  const real lz = node->lower_z[slot], uz = node->upper_z[slot];
+  const real tnx = ((r->neg_x ? ux : lx) - r->ox1) * r->ix1, tfx = ((r->neg_x ? lx : ux) - r->ox1) * r->ix1;
+  const real tny = ((r->neg_y ? uy : ly) - r->oy1) * r->iy1, tfy = ((r->neg_y ? ly : uy) - r->oy1) * r->iy1;
+  const real tnz = ((r->neg_z ? uz : lz) - r->oz1) * r->iz1, tfz = ((r->neg_z ? lz : uz) - r->oz1) * r->iz1;
+  const real entry = fmax(fmax(tnx, tny), fmax(tnz, (real)0));
+  const real far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f;
+  return entry <= far && entry < t_max ? entry : CLPT_NO_HIT;
+}
+
+/* Orders two (distance, slot) pairs, the nearer first: one comparator of the sorting network. */
+CLPT_INLINE void bvh_order(real* ta, uint* sa, real* tb, uint* sb) {
+  const bool swap = *tb < *ta;
+  const real t = *ta;
+  const uint s = *sa;
+  *ta = swap ? *tb : *ta;
+  *sa = swap ? *sb : *sa;
+  *tb = swap ? t : *tb;
+  *sb = swap ? s : *sb;
+}
+
 /* Walks the hierarchy for the closest hit before hit->t (any_hit: stops at the first hit, for a
  * shadow ray whose hit->t is the distance to the light). Spheres keep intersect.cl's contract:
  * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit; triangle
  * `skip_triangle` (a shadow ray's sampled light triangle, which cannot hide its own point; -1:
  * none) neither, in kernels with triangle lights. With CLPT_HAS_ALPHA, a triangle hit where its
- * material's alpha cuts the surface away (alpha.cl, seed `alpha_seed`) is no hit. */
+ * material's alpha cuts the surface away (alpha.cl, seed `alpha_seed`) is no hit.
+ *
+ * At a node, the four child boxes are tested at once (bvh_node_entries); the hit children are
+ * sorted by entry distance (a 5-comparator network), the nearest visited (an interior child is
+ * opened next, a leaf's primitives tested), the others pushed farthest first, so that they come
+ * off the stack nearest first. A stack entry names a child slot (node << 2 | slot); popped, its
+ * box is tested again against the hit->t found since it was pushed, and it is skipped when wholly
+ * behind it. */
 CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
                               int skip, int skip_triangle, bool any_hit, uint alpha_seed, Hit* hit) {
 #if !CLPT_HAS_ALPHA
@@ -102,37 +175,59 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
 #endif
   if (node_count == 0u) return;
   /* The slab test's copies of the ray, which SLP may pair without harm (maths.cl, v3_unpaired). */
-  const Vec3 o_box = v3_unpaired(o);
-  const Vec3 inv_box = v3_unpaired(inverse_direction(d));
+  const BoxRay box = box_ray(v3_unpaired(o), v3_unpaired(inverse_direction(d)));
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
   uint depth = 0u;
-  uint node = 0u;
-  bool done = box_entry(&scene->nodes[0], o_box, inv_box, hit->t) >= CLPT_NO_HIT;
-  bool popped = false; /* the current node came off the stack */
+  uint node = 0u;   /* the node to open, when `open` */
+  bool open = true; /* false: the entry `ref` just came off the stack */
+  uint ref = 0u;
+  bool done = false;
   while (!done) {
-    __global const GpuBvhNode* n = &scene->nodes[node];
-    bool pop = true;
-    if (popped && box_entry(n, o_box, inv_box, hit->t) >= CLPT_NO_HIT) {
-      /* Pushed before a nearer hit was found, and now wholly behind it: not opened. Its box is
-       * tested again rather than its entry distance kept on the stack, which would double the
-       * stack (a GPU's scratch memory) for one box test per pop. */
-    } else if (n->count == 0u) {
-      const uint a = node + 1u, b = n->first;
-      const real ta = box_entry(&scene->nodes[a], o_box, inv_box, hit->t);
-      const real tb = box_entry(&scene->nodes[b], o_box, inv_box, hit->t);
-      const bool hit_a = ta < CLPT_NO_HIT, hit_b = tb < CLPT_NO_HIT;
-      if (hit_a || hit_b) {
-        pop = false;
-        const bool a_first = hit_a && (!hit_b || ta <= tb);
-        node = a_first ? a : b;
-        if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
+    bool leaf = false;
+    uint first = 0u, count = 0u;
+    if (open) {
+      __global const GpuBvhNode* n = &scene->nodes[node];
+      const real4 t = bvh_node_entries(n, &box, hit->t);
+      real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
+      uint s0 = 0u, s1 = 1u, s2 = 2u, s3 = 3u;
+      bvh_order(&t0, &s0, &t1, &s1);
+      bvh_order(&t2, &s2, &t3, &s3);
+      bvh_order(&t0, &s0, &t2, &s2);
+      bvh_order(&t1, &s1, &t3, &s3);
+      bvh_order(&t1, &s1, &t2, &s2);
+      const uint base = node << 2;
+      if (t3 < CLPT_NO_HIT) stack[depth++] = base | s3;
+      if (t2 < CLPT_NO_HIT) stack[depth++] = base | s2;
+      if (t1 < CLPT_NO_HIT) stack[depth++] = base | s1;
+      if (t0 < CLPT_NO_HIT) {
+        count = n->count[s0];
+        first = n->child[s0];
+        leaf = count != 0u;
+        node = first;
+        open = !leaf;
+      } else {
+        open = false;
       }
     } else {
-      const uint first = n->first;
-      const uint count = n->count & CLPT_BVH_COUNT_MASK;
-      if (n->count & CLPT_BVH_SPHERE_LEAF) {
-        for (uint i = first; i < first + count; ++i) {
+      __global const GpuBvhNode* n = &scene->nodes[ref >> 2];
+      const uint slot = ref & 3u;
+      /* Pushed before a nearer hit was found, and now wholly behind it: not visited. Its box is
+       * tested again rather than its entry distance kept on the stack (the same answer, as the
+       * entry distance does not depend on hit->t), which would double the stack, a GPU's scratch
+       * memory, and measured no faster on the CPU (docs/performance.md, "Traversal"). */
+      if (bvh_slot_entry(n, slot, &box, hit->t) < CLPT_NO_HIT) {
+        count = n->count[slot];
+        first = n->child[slot];
+        leaf = count != 0u;
+        node = first;
+        open = !leaf;
+      }
+    }
+    if (leaf) {
+      const uint n_prims = count & CLPT_BVH_COUNT_MASK;
+      if (count & CLPT_BVH_SPHERE_LEAF) {
+        for (uint i = first; i < first + n_prims; ++i) {
           const real t = sphere_intersect(&scene->spheres[i], o, d, t_min);
           const bool closer = t < hit->t && (int)i != skip;
           hit->t = closer ? t : hit->t;
@@ -141,7 +236,7 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
         }
       } else {
 #if CLPT_HAS_TRIANGLES
-        for (uint i = first; i < first + count; ++i) {
+        for (uint i = first; i < first + n_prims; ++i) {
 #if CLPT_HAS_ALPHA
           const TriangleTest test = triangle_test(&ray, &scene->triangles[i]);
           const real t = triangle_test_distance(test, hit->t);
@@ -164,10 +259,9 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       }
       done = any_hit && (hit->sphere >= 0 || hit->triangle >= 0);
     }
-    popped = pop && !done;
-    if (popped) {
+    if (!open && !done) {
       done = depth == 0u;
-      node = done ? 0u : stack[--depth];
+      ref = done ? 0u : stack[--depth];
     }
   }
 }

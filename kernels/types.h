@@ -72,20 +72,35 @@ typedef struct GpuSphere {
   float pad[2];
 } GpuSphere;
 
-/* One node of the bounding volume hierarchy over triangles (and spheres, when a scene has more
- * than a few): 32 bytes. Nodes are stored depth first: an interior node's first child is the next
- * node, its second child is node `first`. A leaf holds `count & CLPT_BVH_COUNT_MASK` primitives
- * from index `first` of the triangle buffer, or of the sphere buffer when CLPT_BVH_SPHERE_LEAF is
- * set in `count` (a leaf holds one kind only). Bounds are camera-relative, rounded outwards. */
+/* One node of the 4-wide bounding volume hierarchy over triangles (and spheres, when a scene has
+ * more than a few): 128 bytes, the boxes of its (up to) four children stored by axis (SoA), so
+ * that the kernels test all four with one vector operation per slab (bvh.cl). The host builds a
+ * binary tree and collapses it (scene/bvh_build.cpp, collapse_bvh). Child slot i is
+ *   - an interior child: count[i] == 0, child[i] the index of its node in the node buffer
+ *     (never 0: node 0 is the root);
+ *   - a leaf: count[i] = primitive count (>= 1) | CLPT_BVH_SPHERE_LEAF for spheres, child[i] the
+ *     first primitive's index in the triangle buffer, or in the sphere buffer (a leaf holds one kind);
+ *   - empty: count[i] == 0, child[i] == 0, and an inverted box (lower +inf, upper -inf) that no
+ *     ray hits, so the kernels never read its entry. A node's occupied slots come first.
+ * Bounds are camera-relative, rounded outwards. */
 #define CLPT_BVH_SPHERE_LEAF 0x80000000u
 #define CLPT_BVH_COUNT_MASK 0x7fffffffu
-/* Traversal stack entries (intersect.cl): the host refuses a hierarchy deeper than this. */
+#define CLPT_BVH_WIDTH 4
+/* Traversal stack entries (bvh.cl; 192 bytes of private memory, as the binary tree's): a node
+ * pushes up to 3 children while one is visited, so the host computes the deepest stack its tree
+ * can need (Bvh::stack_need: about 1.5x a balanced binary tree's depth, whose log2 of 2^27
+ * triangles is 27) and refuses one past this; the builders' binary trees are held to this many
+ * levels too. */
 #define CLPT_BVH_STACK 48
 typedef struct GpuBvhNode {
-  float lower[3];   /* box minimum corner, camera-relative world units */
-  clpt_u32 first;   /* interior: index of the second child; leaf: first primitive */
-  float upper[3];   /* box maximum corner */
-  clpt_u32 count;   /* interior: 0; leaf: primitive count, | CLPT_BVH_SPHERE_LEAF for spheres */
+  float lower_x[4]; /* children's box minimum corners, camera-relative world units */
+  float upper_x[4]; /* and maximum corners */
+  float lower_y[4];
+  float upper_y[4];
+  float lower_z[4];
+  float upper_z[4];
+  clpt_u32 child[4]; /* interior child: node index; leaf: first primitive; empty: 0 */
+  clpt_u32 count[4]; /* interior child or empty: 0; leaf: primitive count | CLPT_BVH_SPHERE_LEAF */
 } GpuBvhNode;
 
 /* A triangle's vertices for intersection, camera-relative: 48 bytes (16-byte rows). Triangles are
@@ -350,9 +365,13 @@ typedef struct GpuPixelPass {
   X(GpuMaterial, transmission)                                                                    \
   X(GpuMaterial, thickness)                                                                       \
   X(GpuMaterial, attenuation)                                                                     \
-  X(GpuBvhNode, lower)                                                                            \
-  X(GpuBvhNode, first)                                                                            \
-  X(GpuBvhNode, upper)                                                                            \
+  X(GpuBvhNode, lower_x)                                                                          \
+  X(GpuBvhNode, upper_x)                                                                          \
+  X(GpuBvhNode, lower_y)                                                                          \
+  X(GpuBvhNode, upper_y)                                                                          \
+  X(GpuBvhNode, lower_z)                                                                          \
+  X(GpuBvhNode, upper_z)                                                                          \
+  X(GpuBvhNode, child)                                                                            \
   X(GpuBvhNode, count)                                                                            \
   X(GpuTriangle, v0)                                                                              \
   X(GpuTriangle, v1)                                                                              \
@@ -476,7 +495,7 @@ typedef struct GpuPixelPass {
                 #T " is copied to the device byte for byte");
 #endif
 CLPT_CHECK_SIZE(GpuMaterial, 64)
-CLPT_CHECK_SIZE(GpuBvhNode, 32)
+CLPT_CHECK_SIZE(GpuBvhNode, 128)
 CLPT_CHECK_SIZE(GpuTriangle, 48)
 CLPT_CHECK_SIZE(GpuTriangleShading, 112)
 CLPT_CHECK_SIZE(GpuSphere, 128)

@@ -14,6 +14,7 @@
 #include "device_test_util.h"
 #include "mesh_test_util.h"
 #include "scene/device_scene.h"
+#include "util/error.h"
 
 namespace clpt::test {
 namespace {
@@ -139,6 +140,12 @@ std::vector<BvhBuilder> builders_here() {
   return {BvhBuilder::Clpt, BvhBuilder::Embree, BvhBuilder::EmbreeOneThread};
 }
 
+// The collapsed 4-wide tree (scene/bvh_build.cpp, collapse_bvh): every node but the root is the
+// child of exactly one slot, after its parent; occupied slots first, empty ones inverted and
+// zero; a node of fewer than 4 children has only leaves (the collapse opens interior children
+// until 4); every child box contains its subtree (an interior child's box holds all its node's
+// child boxes, a leaf's box its triangles' vertices and its spheres' centres); every primitive
+// is in exactly one leaf; the stack the tree can need is recomputed and within CLPT_BVH_STACK.
 TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
   for (BvhBuilder builder : builders_here())
   for (const Scene& scene : comparison_scenes()) {
@@ -146,40 +153,184 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
     const DeviceScene ds = make_device_scene(scene, 4, 3, Precision::Robust, builder);
     const Bvh& bvh = ds.bvh;
     ASSERT_FALSE(bvh.nodes.empty());
-    EXPECT_LE(bvh.depth, CLPT_BVH_STACK);
+    EXPECT_TRUE(bvh.binary.empty());
+    EXPECT_LE(bvh.stack_need, CLPT_BVH_STACK);
+    EXPECT_GE(bvh.binary_depth, bvh.depth);
+    // At most (2n + 2) / 3 nodes for n primitives (render/limits.h, kMaxBvhNodes).
+    EXPECT_LE(3 * bvh.nodes.size(), 2 * (bvh.triangle_order.size() + bvh.sphere_order.size()) + 2);
     std::vector<int> tri_seen(ds.triangles.size(), 0), sphere_seen(ds.spheres.size(), 0);
-    for (size_t i = 0; i < bvh.nodes.size(); ++i) {
+    std::vector<int> parents(bvh.nodes.size(), 0);
+    std::vector<int> need(bvh.nodes.size(), 0);
+    // Backwards: children come after their parents, so each child's need is known first.
+    for (size_t i = bvh.nodes.size(); i-- > 0;) {
       const GpuBvhNode& n = bvh.nodes[i];
-      if (n.count == 0) {
-        ASSERT_LT(n.first, bvh.nodes.size());
-        ASSERT_GT(n.first, i + 1);
-        for (const GpuBvhNode* child : {&bvh.nodes[i + 1], &bvh.nodes[n.first]})
-          for (int k = 0; k < 3; ++k) {
-            EXPECT_LE(n.lower[k], child->lower[k]);
-            EXPECT_GE(n.upper[k], child->upper[k]);
+      const float* lower[3] = {n.lower_x, n.lower_y, n.lower_z};
+      const float* upper[3] = {n.upper_x, n.upper_y, n.upper_z};
+      int used = 0, interior = 0, deepest = 0;
+      for (int s = 0; s < CLPT_BVH_WIDTH; ++s) {
+        if (!(n.lower_x[s] <= n.upper_x[s])) {
+          // Empty: inverted on every axis, after the occupied slots, and naming nothing.
+          for (int k = 0; k < 3; ++k) EXPECT_GT(lower[k][s], upper[k][s]);
+          EXPECT_EQ(n.child[s], 0u);
+          EXPECT_EQ(n.count[s], 0u);
+          continue;
+        }
+        EXPECT_EQ(used, s) << "node " << i << ": an occupied slot after an empty one";
+        ++used;
+        if (n.count[s] == 0) {
+          ++interior;
+          ASSERT_LT(n.child[s], bvh.nodes.size());
+          ASSERT_GT(n.child[s], i);
+          ++parents[n.child[s]];
+          deepest = std::max(deepest, need[n.child[s]]);
+          const GpuBvhNode& c = bvh.nodes[n.child[s]];
+          const float* c_lower[3] = {c.lower_x, c.lower_y, c.lower_z};
+          const float* c_upper[3] = {c.upper_x, c.upper_y, c.upper_z};
+          for (int t = 0; t < CLPT_BVH_WIDTH; ++t) {
+            if (!(c.lower_x[t] <= c.upper_x[t])) continue;
+            for (int k = 0; k < 3; ++k) {
+              EXPECT_LE(lower[k][s], c_lower[k][t]);
+              EXPECT_GE(upper[k][s], c_upper[k][t]);
+            }
           }
-        continue;
-      }
-      const bool spheres = n.count & CLPT_BVH_SPHERE_LEAF;
-      std::vector<int>& seen = spheres ? sphere_seen : tri_seen;
-      const uint32_t count = n.count & CLPT_BVH_COUNT_MASK;
-      ASSERT_LE(n.first + count, seen.size());
-      for (uint32_t j = n.first; j < n.first + count; ++j) {
-        ++seen[j];
-        if (spheres) continue;
-        for (const float* v : {ds.triangles[j].v0, ds.triangles[j].v1, ds.triangles[j].v2})
-          for (int k = 0; k < 3; ++k) {
-            EXPECT_LE(n.lower[k], v[k]);
-            EXPECT_GE(n.upper[k], v[k]);
+          continue;
+        }
+        const bool spheres = n.count[s] & CLPT_BVH_SPHERE_LEAF;
+        std::vector<int>& seen = spheres ? sphere_seen : tri_seen;
+        const uint32_t count = n.count[s] & CLPT_BVH_COUNT_MASK;
+        EXPECT_GE(count, 1u);
+        ASSERT_LE(n.child[s] + count, seen.size());
+        for (uint32_t j = n.child[s]; j < n.child[s] + count; ++j) {
+          ++seen[j];
+          std::vector<std::array<double, 3>> points;
+          if (spheres) {
+            const GpuSphere& sp = ds.spheres[j];
+            const double r = double(sp.radius) + sp.radius_lo;
+            std::array<double, 3> centre;
+            for (int k = 0; k < 3; ++k)
+              centre[size_t(k)] = double(sp.surface_point[k]) + sp.surface_point_lo[k] -
+                                  r * (double(sp.surface_normal[k]) + sp.surface_normal_lo[k]);
+            points.push_back(centre);
+          } else {
+            for (const float* v : {ds.triangles[j].v0, ds.triangles[j].v1, ds.triangles[j].v2})
+              points.push_back({v[0], v[1], v[2]});
           }
+          for (const auto& p : points)
+            for (int k = 0; k < 3; ++k) {
+              EXPECT_LE(lower[k][s], p[size_t(k)]);
+              EXPECT_GE(upper[k][s], p[size_t(k)]);
+            }
+        }
       }
+      EXPECT_GE(used, 1);
+      if (used < CLPT_BVH_WIDTH) {
+        EXPECT_EQ(interior, 0) << "node " << i << " could have opened an interior child";
+      }
+      need[i] = used - 1 + deepest;
     }
+    EXPECT_EQ(parents[0], 0);
+    for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "node " << i;
+    EXPECT_EQ(need[0], bvh.stack_need);
     for (int s : tri_seen) EXPECT_EQ(s, 1);
     // The loop's spheres come first and are in no leaf; every other sphere is in exactly one.
     if (spheres_in_hierarchy(scene)) {
       for (size_t i = 0; i < sphere_seen.size(); ++i) EXPECT_EQ(sphere_seen[i], i < ds.loop_spheres ? 0 : 1) << i;
     }
   }
+}
+
+// The collapse of a hand-built binary tree: the child of the largest area is opened first.
+TEST(BvhBuild, CollapseOpensTheLargestChildFirst) {
+  // Binary (depth first): 0 = root(1, 2); 1 = interior(small: 3, 4)... laid out as the builders do.
+  auto box = [](float lo, float hi) {
+    BvhBox b;
+    b.lower = {lo, 0, 0};
+    b.upper = {hi, 1, 1};
+    return b;
+  };
+  std::vector<BvhPrimitive> prims(6);
+  for (uint32_t i = 0; i < 6; ++i) {
+    prims[i].box = box(float(i), float(i) + 1);
+    prims[i].index = i;
+  }
+  Bvh bvh;
+  // root [0,6] -> A [0,2] (leaves p0, p1), B [2,6] -> C [2,4] (p2, p3), D [4,6] (p4, p5).
+  const uint32_t root = push_bvh_node(bvh, box(0, 6));
+  const uint32_t a = push_bvh_node(bvh, box(0, 2));
+  make_bvh_leaf(bvh, push_bvh_node(bvh, box(0, 1)), &prims[0], &prims[1]);
+  bvh.binary[a].first = uint32_t(bvh.binary.size());
+  make_bvh_leaf(bvh, push_bvh_node(bvh, box(1, 2)), &prims[1], &prims[2]);
+  bvh.binary[root].first = uint32_t(bvh.binary.size());
+  const uint32_t b = push_bvh_node(bvh, box(2, 6));
+  const uint32_t c = push_bvh_node(bvh, box(2, 4));
+  make_bvh_leaf(bvh, push_bvh_node(bvh, box(2, 3)), &prims[2], &prims[3]);
+  bvh.binary[c].first = uint32_t(bvh.binary.size());
+  make_bvh_leaf(bvh, push_bvh_node(bvh, box(3, 4)), &prims[3], &prims[4]);
+  bvh.binary[b].first = uint32_t(bvh.binary.size());
+  make_bvh_leaf(bvh, push_bvh_node(bvh, box(4, 6)), prims.data() + 4, prims.data() + 6);
+  collapse_bvh(bvh);
+  // The root opens B (area of [2,6] beats A's [0,2]), then A: slots A's p0, A's p1, C, D.
+  ASSERT_EQ(bvh.nodes.size(), 2u);
+  const GpuBvhNode& r = bvh.nodes[0];
+  EXPECT_EQ(r.count[0], 1u);
+  EXPECT_EQ(r.child[0], 0u);
+  EXPECT_EQ(r.count[1], 1u);
+  EXPECT_EQ(r.child[1], 1u);
+  EXPECT_EQ(r.count[2], 0u);  // C, interior: node 1
+  EXPECT_EQ(r.child[2], 1u);
+  EXPECT_EQ(r.lower_x[2], 2.0f);
+  EXPECT_EQ(r.upper_x[2], 4.0f);
+  EXPECT_EQ(r.count[3], 2u);  // D, a leaf of p4 and p5
+  EXPECT_EQ(r.child[3], 4u);
+  EXPECT_EQ(bvh.nodes[1].count[0], 1u);
+  EXPECT_EQ(bvh.nodes[1].count[1], 1u);
+  EXPECT_GT(bvh.nodes[1].lower_x[2], bvh.nodes[1].upper_x[2]);  // empty
+  EXPECT_EQ(bvh.depth, 2);
+  EXPECT_EQ(bvh.stack_need, 3 + 1);
+  EXPECT_TRUE(bvh.binary.empty());
+}
+
+// A binary tree whose collapse needs 3 stack entries for every 2 binary levels (each node X has two
+// interior children A and B, A over two leaves and B over a leaf and the next X): 22 such levels
+// (44 binary levels, within the builders' CLPT_BVH_STACK) could need 3 * 22 entries, more than
+// the kernels' stack; the collapse refuses it, naming the stack.
+TEST(BvhBuild, CollapseRefusesATreeItsStackCannotHold) {
+  const int levels = 22;
+  std::vector<BvhPrimitive> prims(size_t(4 * levels + 1));
+  for (size_t i = 0; i < prims.size(); ++i) {
+    prims[i].box.lower = {float(i), 0, 0};
+    prims[i].box.upper = {float(i) + 1, 1, 1};
+    prims[i].index = uint32_t(i);
+  }
+  BvhBox all;
+  all.lower = {0, 0, 0};
+  all.upper = {float(prims.size()), 1, 1};
+  Bvh bvh;
+  size_t next = 0;
+  auto leaf = [&] { make_bvh_leaf(bvh, push_bvh_node(bvh, all), &prims[next], &prims[next] + 1), ++next; };
+  for (int level = 0; level < levels; ++level) {
+    const uint32_t x = push_bvh_node(bvh, all);
+    const uint32_t a = push_bvh_node(bvh, all);
+    leaf();
+    bvh.binary[a].first = uint32_t(bvh.binary.size());
+    leaf();
+    bvh.binary[x].first = uint32_t(bvh.binary.size());
+    const uint32_t b = push_bvh_node(bvh, all);
+    leaf();
+    bvh.binary[b].first = uint32_t(bvh.binary.size());
+  }
+  leaf();  // the last B's second child
+  const auto [code, message] = [&] {
+    try {
+      collapse_bvh(bvh);
+    } catch (const Error& e) {
+      return std::make_pair(e.code(), std::string(e.what()));
+    }
+    return std::make_pair(ExitCode::Ok, std::string());
+  }();
+  EXPECT_EQ(code, ExitCode::BadScene);
+  EXPECT_NE(message.find("traversal stack"), std::string::npos) << message;
+  EXPECT_NE(message.find(std::to_string(CLPT_BVH_STACK)), std::string::npos) << message;
 }
 
 TEST(BvhTraversal, ClosestHitEqualsBruteForceOverEveryPrimitive) {

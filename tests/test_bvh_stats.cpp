@@ -1,10 +1,12 @@
 // The hierarchy's statistics and build (scene/bvh_stats.cpp, scene/bvh_build.cpp) and the
 // execution-form rule (render/form_rule.cpp): the SAH cost of a hand-built tree equals its closed
-// form; the traversal replica counts the nodes, boxes and triangles of kernels/bvh.cl's order on a
-// tiny known tree; the ray sample is deterministic; the parallel build writes the same hierarchy
+// form (4-wide nodes); the traversal replica counts the nodes, boxes and triangles of
+// kernels/bvh.cl's order on a tiny known tree; the ray sample is deterministic; the parallel build writes the same hierarchy
 // for any thread count; the form rule picks by the scene's geometry and --form overrides it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <random>
@@ -18,29 +20,46 @@
 namespace clpt::test {
 namespace {
 
-GpuBvhNode node(std::array<float, 3> lower, std::array<float, 3> upper, uint32_t first, uint32_t count) {
+// A 4-wide node over `slots` (box, child, count each); the rest empty (inverted boxes).
+struct Slot {
+  std::array<float, 3> lower, upper;
+  uint32_t child, count;
+};
+GpuBvhNode node(std::initializer_list<Slot> slots) {
   GpuBvhNode n{};
-  for (int k = 0; k < 3; ++k) {
-    n.lower[k] = lower[size_t(k)];
-    n.upper[k] = upper[size_t(k)];
+  for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+    n.lower_x[i] = n.lower_y[i] = n.lower_z[i] = INFINITY;
+    n.upper_x[i] = n.upper_y[i] = n.upper_z[i] = -INFINITY;
   }
-  n.first = first;
-  n.count = count;
+  int i = 0;
+  for (const Slot& s : slots) {
+    n.lower_x[i] = s.lower[0], n.lower_y[i] = s.lower[1], n.lower_z[i] = s.lower[2];
+    n.upper_x[i] = s.upper[0], n.upper_y[i] = s.upper[1], n.upper_z[i] = s.upper[2];
+    n.child[i] = s.child;
+    n.count[i] = s.count;
+    ++i;
+  }
   return n;
 }
 
 TEST(BvhStats, SahCostOfAHandBuiltTreeIsTheClosedForm) {
-  // Root [0,2]x[0,1]x[0,1] (half area 2 + 1 + 2 = 5) over a leaf of 2 primitives in [0,1]^3 (half
-  // area 3) and a leaf of 1 in [1,2]x[0,1]^2 (3): 1 * 5/5 + 2 * 3/5 + 1 * 3/5 = 2.8 with a node
-  // cost of 1; 2 * 5/5 + 9/5 = 3.8 with 2.
+  // A root of box [0,2]x[0,1]x[0,1] (half area 2 + 1 + 2 = 5, its children's union) over a leaf of 2
+  // primitives in [0,1]^3 (half area 3) and a leaf of 1 in [1,2]x[0,1]^2 (3): 1 * 5/5 + 2 * 3/5 +
+  // 1 * 3/5 = 2.8 with a node cost of 1; 2 * 5/5 + 9/5 = 3.8 with 2.
   Bvh bvh;
-  bvh.nodes = {node({0, 0, 0}, {2, 1, 1}, 2, 0), node({0, 0, 0}, {1, 1, 1}, 0, 2), node({1, 0, 0}, {2, 1, 1}, 2, 1)};
+  bvh.nodes = {node({{{0, 0, 0}, {1, 1, 1}, 0, 2}, {{1, 0, 0}, {2, 1, 1}, 2, 1}})};
   EXPECT_DOUBLE_EQ(bvh_sah_cost(bvh), 2.8);
   EXPECT_DOUBLE_EQ(bvh_sah_cost(bvh, 2.0), 3.8);
-  // A single leaf: its count. No nodes: 0.
+  // The same leaves one level down, under a root whose other child is a leaf of 1 in [0,2]x[0,1]x[1,2]:
+  // root box [0,2]x[0,1]x[0,2] (half area 2 + 2 + 4 = 8): (8 + 5 + 2 * 3 + 1 * 3 + 1 * 5) / 8 = 27/8.
+  Bvh two;
+  two.nodes = {node({{{0, 0, 0}, {2, 1, 1}, 1, 0}, {{0, 0, 1}, {2, 1, 2}, 3, 1}}),
+               node({{{0, 0, 0}, {1, 1, 1}, 0, 2}, {{1, 0, 0}, {2, 1, 1}, 2, 1}})};
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(two), 27.0 / 8.0);
+  // A tree that is one leaf: a root holding it, one node test and its count. No nodes: 0.
   Bvh leaf;
-  leaf.nodes = {node({0, 0, 0}, {1, 2, 3}, 0, 4)};
-  EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 4.0);
+  leaf.nodes = {node({{{0, 0, 0}, {1, 2, 3}, 0, 4}})};
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 5.0);
   EXPECT_EQ(bvh_sah_cost(Bvh()), 0.0);
 }
 
@@ -52,15 +71,33 @@ TEST(BvhStats, SahCostOfTheBuildersTreeIsItsRecursiveCost) {
   scene.meshes = {random_soup(rng, 2000, {0, 0, 0}, 2.0, 0.3, lambertian(0.5))};
   const DeviceScene ds = make_device_scene(scene, 4, 3);
   const std::vector<GpuBvhNode>& n = ds.bvh.nodes;
-  auto area = [](const GpuBvhNode& b) {
-    const double x = double(b.upper[0]) - b.lower[0], y = double(b.upper[1]) - b.lower[1], z = double(b.upper[2]) - b.lower[2];
-    return x * y + y * z + z * x;
+  auto area = [](const GpuBvhNode& b, int i) {
+    const double x = double(b.upper_x[i]) - b.lower_x[i], y = double(b.upper_y[i]) - b.lower_y[i],
+                 z = double(b.upper_z[i]) - b.lower_z[i];
+    return x < 0 ? 0.0 : x * y + y * z + z * x;
   };
-  std::function<double(uint32_t)> cost = [&](uint32_t i) -> double {
-    if (n[i].count != 0) return double(n[i].count & CLPT_BVH_COUNT_MASK);
-    return 1.0 + (area(n[i + 1]) * cost(i + 1) + area(n[n[i].first]) * cost(n[i].first)) / area(n[i]);
+  // cost(node of box area A) = C_t + sum over its children of A_child cost(child) / A, a leaf's
+  // cost its count; the root's box is the union of its children's.
+  std::function<double(uint32_t, double)> cost = [&](uint32_t i, double a) -> double {
+    double c = 1.0;
+    for (int k = 0; k < CLPT_BVH_WIDTH; ++k) {
+      if (area(n[i], k) == 0 && n[i].lower_x[k] > n[i].upper_x[k]) continue;  // empty slot
+      const double child = n[i].count[k] != 0 ? double(n[i].count[k] & CLPT_BVH_COUNT_MASK)
+                                              : cost(n[i].child[k], area(n[i], k));
+      c += area(n[i], k) * child / a;
+    }
+    return c;
   };
-  EXPECT_NEAR(bvh_sah_cost(ds.bvh), cost(0), 1e-9 * cost(0));
+  GpuBvhNode root = n[0];
+  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int k = 0; k < CLPT_BVH_WIDTH; ++k) {
+    if (root.lower_x[k] > root.upper_x[k]) continue;
+    lo[0] = std::min(lo[0], root.lower_x[k]), lo[1] = std::min(lo[1], root.lower_y[k]), lo[2] = std::min(lo[2], root.lower_z[k]);
+    hi[0] = std::max(hi[0], root.upper_x[k]), hi[1] = std::max(hi[1], root.upper_y[k]), hi[2] = std::max(hi[2], root.upper_z[k]);
+  }
+  const double x = double(hi[0]) - lo[0], y = double(hi[1]) - lo[1], z = double(hi[2]) - lo[2];
+  const double root_cost = cost(0, x * y + y * z + z * x);
+  EXPECT_NEAR(bvh_sah_cost(ds.bvh), root_cost, 1e-9 * root_cost);
   // A binned SAH tree over 2000 triangles costs far less than testing them all.
   EXPECT_LT(bvh_sah_cost(ds.bvh), 100.0);
 }
@@ -74,11 +111,12 @@ GpuTriangle triangle_at_z(float z) {
   return t;
 }
 
-// Two leaves along z, one triangle each (z = 0.5 and z = 2.5, the corner x, y in [0, 1], x + y <= 1).
+// Two leaves along z, one triangle each (z = 0.5 and z = 2.5, the corner x, y in [0, 1], x + y <= 1),
+// the root's slots 0 and 1.
 DeviceScene two_leaf_scene() {
   DeviceScene ds;
   ds.triangles = {triangle_at_z(0.5f), triangle_at_z(2.5f)};
-  ds.bvh.nodes = {node({0, 0, 0}, {1, 1, 3}, 2, 0), node({0, 0, 0}, {1, 1, 1}, 0, 1), node({0, 0, 2}, {1, 1, 3}, 1, 1)};
+  ds.bvh.nodes = {node({{{0, 0, 0}, {1, 1, 1}, 0, 1}, {{0, 0, 2}, {1, 1, 3}, 1, 1}})};
   return ds;
 }
 
@@ -92,52 +130,54 @@ StatsRay ray(std::array<double, 3> o, std::array<double, 3> d) {
 TEST(BvhStats, ReplicaCountsTheKernelsOrderOnATinyTree) {
   const DeviceScene ds = two_leaf_scene();
   {
-    // +z: root, then both children hit, the nearer (node 1) first: its triangle at t = 1.5; node 2
-    // popped, its box tested again (entry 3 > 1.5) and not opened.
+    // +z: the root opened (two occupied slots tested), both hit, the nearer (slot 0) visited in the
+    // same iteration: its triangle at t = 1.5; slot 1 popped, its box tested again (entry 3 > 1.5)
+    // and not visited.
     TraversalCounts c;
     const StatsHit h = replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0, 1}), c);
     EXPECT_EQ(h.triangle, 0);
     EXPECT_DOUBLE_EQ(h.t, 1.5);
-    EXPECT_EQ(c.nodes, 3u);
-    EXPECT_EQ(c.boxes, 4u);
+    EXPECT_EQ(c.nodes, 2u);
+    EXPECT_EQ(c.boxes, 3u);
     EXPECT_EQ(c.triangles, 1u);
     EXPECT_EQ(c.hits, 1u);
   }
   {
-    // -z from above: node 2 is nearer now.
+    // -z from above: slot 1 is nearer now.
     TraversalCounts c;
     const StatsHit h = replica_closest_hit(ds, ray({0.25, 0.25, 4}, {0, 0, -1}), c);
     EXPECT_EQ(h.triangle, 1);
     EXPECT_DOUBLE_EQ(h.t, 1.5);
-    EXPECT_EQ(c.nodes, 3u);
-    EXPECT_EQ(c.boxes, 4u);
-    EXPECT_EQ(c.triangles, 1u);
-  }
-  {
-    // Through both boxes, beside both triangles (x + y > 1): both leaves opened.
-    TraversalCounts c;
-    const StatsHit h = replica_closest_hit(ds, ray({0.9, 0.9, -1}, {0, 0, 1}), c);
-    EXPECT_FALSE(h.hit());
-    EXPECT_EQ(c.nodes, 3u);
-    EXPECT_EQ(c.boxes, 4u);
-    EXPECT_EQ(c.triangles, 2u);
-    EXPECT_EQ(c.hits, 0u);
-  }
-  {
-    // Only the lower box (leaving the root's y range at z = 0.5, beside the triangle there): root,
-    // node 1, then nothing to pop.
-    TraversalCounts c;
-    EXPECT_FALSE(replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0.5, 1}), c).hit());
     EXPECT_EQ(c.nodes, 2u);
     EXPECT_EQ(c.boxes, 3u);
     EXPECT_EQ(c.triangles, 1u);
   }
   {
-    // Beside the root: one box test, no node visited.
+    // Through both boxes, beside both triangles (x + y > 1): both leaves tested.
+    TraversalCounts c;
+    const StatsHit h = replica_closest_hit(ds, ray({0.9, 0.9, -1}, {0, 0, 1}), c);
+    EXPECT_FALSE(h.hit());
+    EXPECT_EQ(c.nodes, 2u);
+    EXPECT_EQ(c.boxes, 3u);
+    EXPECT_EQ(c.triangles, 2u);
+    EXPECT_EQ(c.hits, 0u);
+  }
+  {
+    // Only the lower box (leaving its y range at z = 0.5, beside the triangle there): the root
+    // opened and slot 0's leaf tested, then nothing to pop.
+    TraversalCounts c;
+    EXPECT_FALSE(replica_closest_hit(ds, ray({0.25, 0.25, -1}, {0, 0.5, 1}), c).hit());
+    EXPECT_EQ(c.nodes, 1u);
+    EXPECT_EQ(c.boxes, 2u);
+    EXPECT_EQ(c.triangles, 1u);
+  }
+  {
+    // Beside both boxes: the root opened, its two boxes missed.
     TraversalCounts c;
     replica_closest_hit(ds, ray({5, 5, -1}, {0, 0, 1}), c);
-    EXPECT_EQ(c.nodes, 0u);
-    EXPECT_EQ(c.boxes, 1u);
+    EXPECT_EQ(c.nodes, 1u);
+    EXPECT_EQ(c.boxes, 2u);
+    EXPECT_EQ(c.triangles, 0u);
     EXPECT_EQ(c.rays, 1u);
   }
 }
@@ -195,6 +235,8 @@ TEST(BvhBuild, SameTreeForAnyThreadCount) {
     EXPECT_EQ(b.triangle_order, reference.triangle_order);
     EXPECT_EQ(b.sphere_order, reference.sphere_order);
     EXPECT_EQ(b.depth, reference.depth);
+    EXPECT_EQ(b.binary_depth, reference.binary_depth);
+    EXPECT_EQ(b.stack_need, reference.stack_need);
   }
 }
 

@@ -136,14 +136,15 @@ TEST(Limits, FirstHitLayersCountInTheMemoryEstimate) {
   EXPECT_EQ(wf_aovs.total_bytes - wf.total_bytes, 65536u * 112 + 1000u * 28 + 1000u * 4096 * 28);
 }
 
-// Triangles add 48 + 112 B each and two 32-byte nodes per primitive (spheres included); a device
+// Triangles add 48 + 112 B each and at most (2n + 2) / 3 128-byte 4-wide nodes for n primitives
+// (spheres included); a device
 // whose largest allocation cannot hold the shading records refuses before upload, naming them.
 TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
   const MemoryEstimate plain = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
   const MemoryEstimate mesh = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000);
-  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 112) + 2u * 100010 * 32);
-  EXPECT_EQ(kDeviceBytesPerTriangle, 224u);
+  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 112) + (2u * 100010 + 2) / 3 * 128);
+  EXPECT_EQ(kDeviceBytesPerTriangle, 246u);
   // An emitting mesh's triangles are light entries too (80 B each), counted from the scene.
   const MemoryEstimate lit = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000, 100001);
   EXPECT_EQ(lit.total_bytes - mesh.total_bytes, 100001u * 80);

@@ -22,9 +22,12 @@ constexpr size_t kMaxSpheres = 4096;
 // Triangles over all meshes: their indices are 31-bit in the hierarchy's leaves and signed 32-bit
 // in a hit; 2^27 keeps every index (and the 2n - 1 nodes) far from either.
 constexpr uint64_t kMaxTriangles = 1ull << 27;
-// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most two hierarchy
-// nodes (2 x 32; a hierarchy over n primitives has at most 2n - 1 nodes).
-constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 2 * 32;
+// Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most 2/3 of a 4-wide
+// hierarchy node (128 B; 86 rounded up): the collapse (scene/bvh_build.h) gives a node fewer than
+// 4 children only when all are leaves, so a tree over n primitives (at most n leaves) has at most
+// (2n + 2) / 3 nodes (kMaxBvhNodes).
+constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 86;
+constexpr uint64_t kMaxBvhNodes(uint64_t primitives) { return (2 * primitives + 2) / 3; }
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough
 // kernels/film.cl sums a pass in three levels of blocks of CLPT_FILM_BLOCK = 16 samples, whose

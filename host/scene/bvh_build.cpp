@@ -51,28 +51,120 @@ BvhBox sphere_box(const std::array<double, 3>& center, double radius) {
 }
 
 uint32_t push_bvh_node(Bvh& bvh, const BvhBox& box) {
-  GpuBvhNode n{};
+  BvhBinaryNode n{};
   for (int k = 0; k < 3; ++k) {
     n.lower[k] = box.lower[k];
     n.upper[k] = box.upper[k];
   }
-  bvh.nodes.push_back(n);
-  return static_cast<uint32_t>(bvh.nodes.size() - 1);
+  bvh.binary.push_back(n);
+  return static_cast<uint32_t>(bvh.binary.size() - 1);
 }
 
 void make_bvh_leaf(Bvh& bvh, uint32_t node, const BvhPrimitive* begin, const BvhPrimitive* end) {
   const bool spheres = begin->kind == PrimitiveKind::Sphere;
   std::vector<uint32_t>& order = spheres ? bvh.sphere_order : bvh.triangle_order;
-  bvh.nodes[node].first = static_cast<uint32_t>(order.size());
-  bvh.nodes[node].count = static_cast<uint32_t>(end - begin) | (spheres ? CLPT_BVH_SPHERE_LEAF : 0u);
+  bvh.binary[node].first = static_cast<uint32_t>(order.size());
+  bvh.binary[node].count = static_cast<uint32_t>(end - begin) | (spheres ? CLPT_BVH_SPHERE_LEAF : 0u);
   for (const BvhPrimitive* p = begin; p != end; ++p) order.push_back(p->index);
 }
 
 void note_bvh_depth(Bvh& bvh, int depth) {
-  bvh.depth = std::max(bvh.depth, depth);
+  bvh.binary_depth = std::max(bvh.binary_depth, depth);
   if (depth > CLPT_BVH_STACK)
     throw Error(ExitCode::BadScene, "the bounding volume hierarchy would be deeper than the kernels' traversal "
                                     "stack of " + std::to_string(CLPT_BVH_STACK) + " levels");
+}
+
+namespace {
+
+// The collapse (collapse_bvh): one 4-wide node per call, appended before its interior children.
+struct Collapser {
+  const std::vector<BvhBinaryNode>& binary;
+  std::vector<GpuBvhNode>& wide;
+  int depth = 0;
+
+  static double area(const BvhBinaryNode& n) {
+    const double x = double(n.upper[0]) - n.lower[0], y = double(n.upper[1]) - n.lower[1],
+                 z = double(n.upper[2]) - n.lower[2];
+    return x < 0 ? 0 : x * y + y * z + z * x;
+  }
+
+  // Writes the 4-wide node for binary interior node `b` (or, for a tree that is one leaf, the
+  // root holding that leaf) at wide depth `level` (root 1); returns its stack need.
+  int collapse(uint32_t b, int level, uint32_t& index_out) {
+    depth = std::max(depth, level);
+    uint32_t slot[CLPT_BVH_WIDTH];
+    int n = 0;
+    if (binary[b].count != 0u) {
+      slot[n++] = b;
+    } else {
+      slot[n++] = b + 1;
+      slot[n++] = binary[b].first;
+      while (n < CLPT_BVH_WIDTH) {
+        int open = -1;
+        for (int i = 0; i < n; ++i)
+          if (binary[slot[i]].count == 0u && (open < 0 || area(binary[slot[i]]) > area(binary[slot[open]]))) open = i;
+        if (open < 0) break;
+        // Its two children take its place, in order.
+        const uint32_t opened = slot[open];
+        for (int i = n; i > open + 1; --i) slot[i] = slot[i - 1];
+        slot[open] = opened + 1;
+        slot[open + 1] = binary[opened].first;
+        ++n;
+      }
+    }
+    const uint32_t index = static_cast<uint32_t>(wide.size());
+    index_out = index;
+    wide.emplace_back();
+    {
+      GpuBvhNode& w = wide.back();
+      for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+        w.lower_x[i] = w.lower_y[i] = w.lower_z[i] = INFINITY;  // an empty slot: inverted, never hit
+        w.upper_x[i] = w.upper_y[i] = w.upper_z[i] = -INFINITY;
+        w.child[i] = 0;
+        w.count[i] = 0;
+      }
+      for (int i = 0; i < n; ++i) {
+        const BvhBinaryNode& c = binary[slot[i]];
+        w.lower_x[i] = c.lower[0];
+        w.lower_y[i] = c.lower[1];
+        w.lower_z[i] = c.lower[2];
+        w.upper_x[i] = c.upper[0];
+        w.upper_y[i] = c.upper[1];
+        w.upper_z[i] = c.upper[2];
+        w.count[i] = c.count;
+        w.child[i] = c.count != 0u ? c.first : 0u;
+      }
+    }
+    int deepest_child = 0;
+    for (int i = 0; i < n; ++i) {
+      if (binary[slot[i]].count != 0u) continue;
+      uint32_t child = 0;
+      deepest_child = std::max(deepest_child, collapse(slot[i], level + 1, child));
+      wide[index].child[i] = child;  // `wide` may have moved: indexed again
+    }
+    return n - 1 + deepest_child;
+  }
+};
+
+}  // namespace
+
+void collapse_bvh(Bvh& bvh) {
+  bvh.nodes.clear();
+  bvh.depth = 0;
+  bvh.stack_need = 0;
+  if (!bvh.binary.empty()) {
+    bvh.nodes.reserve(bvh.binary.size() / 2 + 1);
+    Collapser c{bvh.binary, bvh.nodes};
+    uint32_t root = 0;
+    bvh.stack_need = c.collapse(0, 1, root);
+    bvh.depth = c.depth;
+  }
+  std::vector<BvhBinaryNode>().swap(bvh.binary);
+  if (bvh.stack_need > CLPT_BVH_STACK)
+    throw Error(ExitCode::BadScene, "the bounding volume hierarchy could need " + std::to_string(bvh.stack_need) +
+                                        " entries of the kernels' traversal stack, which holds " +
+                                        std::to_string(CLPT_BVH_STACK));
 }
 
 namespace {
@@ -311,19 +403,19 @@ struct Builder {
   // Appends `sub` (a subtree built on its own, indices from 0) to `out` as the serial build lays
   // it out right after what `out` holds.
   static void stitch(Bvh& out, const Bvh& sub) {
-    const uint32_t node_base = static_cast<uint32_t>(out.nodes.size());
+    const uint32_t node_base = static_cast<uint32_t>(out.binary.size());
     const uint32_t triangle_base = static_cast<uint32_t>(out.triangle_order.size());
     const uint32_t sphere_base = static_cast<uint32_t>(out.sphere_order.size());
-    for (GpuBvhNode n : sub.nodes) {
+    for (BvhBinaryNode n : sub.binary) {
       if (n.count == 0u)
         n.first += node_base;
       else
         n.first += (n.count & CLPT_BVH_SPHERE_LEAF) ? sphere_base : triangle_base;
-      out.nodes.push_back(n);
+      out.binary.push_back(n);
     }
     out.triangle_order.insert(out.triangle_order.end(), sub.triangle_order.begin(), sub.triangle_order.end());
     out.sphere_order.insert(out.sphere_order.end(), sub.sphere_order.begin(), sub.sphere_order.end());
-    out.depth = std::max(out.depth, sub.depth);
+    out.binary_depth = std::max(out.binary_depth, sub.binary_depth);
   }
 
   // The subtree over [begin, end) (box `box`, centroids' box `centres`) at `depth`, appended to
@@ -373,14 +465,14 @@ struct Builder {
       worker.join();
       threads.give_back();
       if (failed) std::rethrow_exception(failed);
-      out.nodes[node].first = static_cast<uint32_t>(out.nodes.size());
-      out.nodes[node].count = 0;
+      out.binary[node].first = static_cast<uint32_t>(out.binary.size());
+      out.binary[node].count = 0;
       stitch(out, right);
       return;
     }
     build(begin, mid, depth + 1, left_box, left_centres, out);
-    out.nodes[node].first = static_cast<uint32_t>(out.nodes.size());
-    out.nodes[node].count = 0;
+    out.binary[node].first = static_cast<uint32_t>(out.binary.size());
+    out.binary[node].count = 0;
     build(mid, end, depth + 1, right_box, right_centres, out);
   }
 };
@@ -403,9 +495,10 @@ Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions
   if (!primitives.empty()) {
     b.centroids.reserve(primitives.size());
     for (const BvhPrimitive& p : b.prims) b.centroids.push_back(b.centroid(p));
-    out.nodes.reserve(2 * primitives.size());
+    out.binary.reserve(2 * primitives.size());
     b.build(0, primitives.size(), 1, b.bounds(0, primitives.size()), b.centre_bounds(0, primitives.size()), out);
   }
+  collapse_bvh(out);
   out.build_seconds = seconds_since(start);
   out.build_cpu_seconds = process_cpu_seconds() - cpu_start;
   out.build_threads = bvh_build_threads(options);

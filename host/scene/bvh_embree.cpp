@@ -1,7 +1,8 @@
 // Embree's rtcBuildBVH into clpt's node layout (bvh_embree.h). Embree calls back to allocate
 // nodes (from its own thread-local allocator, freed with the RTCBVH) and leaves; the tree it
-// returns is then walked once to write GpuBvhNode depth first with clpt's own boxes (the union
-// of the primitives' float boxes, so that a leaf's box contains what the kernels intersect).
+// returns is then walked once to write the binary tree (BvhBinaryNode) depth first with clpt's own
+// boxes (the union of the primitives' float boxes, so that a leaf's box contains what the kernels
+// intersect), which collapse_bvh turns into the kernels' 4-wide nodes as for clpt's builder.
 #include "scene/bvh_embree.h"
 
 #include <embree3/rtcore.h>
@@ -57,8 +58,8 @@ struct Flattener {
 
   void set_box(uint32_t node, const BvhBox& box) {
     for (int k = 0; k < 3; ++k) {
-      out.nodes[node].lower[k] = box.lower[k];
-      out.nodes[node].upper[k] = box.upper[k];
+      out.binary[node].lower[k] = box.lower[k];
+      out.binary[node].upper[k] = box.upper[k];
     }
   }
 
@@ -80,8 +81,8 @@ struct Flattener {
     BvhBox part;
     for (size_t i = 0; i < spheres; ++i) part.grow(prims[i].box);
     make_bvh_leaf(out, push_bvh_node(out, part), prims.data(), prims.data() + spheres);
-    out.nodes[node].first = static_cast<uint32_t>(out.nodes.size());
-    out.nodes[node].count = 0;
+    out.binary[node].first = static_cast<uint32_t>(out.binary.size());
+    out.binary[node].count = 0;
     part = BvhBox();
     for (size_t i = spheres; i < prims.size(); ++i) part.grow(prims[i].box);
     make_bvh_leaf(out, push_bvh_node(out, part), prims.data() + spheres, prims.data() + prims.size());
@@ -100,8 +101,8 @@ struct Flattener {
     note_bvh_depth(out, depth);
     const uint32_t self = push_bvh_node(out, BvhBox());
     BvhBox box = node(inner->child[0], depth + 1);
-    out.nodes[self].first = static_cast<uint32_t>(out.nodes.size());
-    out.nodes[self].count = 0;
+    out.binary[self].first = static_cast<uint32_t>(out.binary.size());
+    out.binary[self].count = 0;
     box.grow(node(inner->child[1], depth + 1));
     set_box(self, box);
     return box;
@@ -148,9 +149,10 @@ Bvh build_bvh_embree(const std::vector<BvhPrimitive>& primitives, const BvhBuild
     args.createLeaf = create_leaf;
     const void* root = rtcBuildBVH(&args);
     if (!root) embree_failed(device.get(), "rtcBuildBVH failed");
-    flat.out.nodes.reserve(2 * primitives.size());
+    flat.out.binary.reserve(2 * primitives.size());
     flat.node(root, 1);
   }
+  collapse_bvh(flat.out);
   flat.out.build_seconds = seconds_since(start);
   flat.out.build_threads = threads > 0 ? threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   return std::move(flat.out);

@@ -28,24 +28,48 @@ D3 load(const float v[3], const float lo[3]) {
 
 constexpr double kNoHit = std::numeric_limits<double>::infinity();
 
-double half_area(const GpuBvhNode& n) {
-  const double x = double(n.upper[0]) - n.lower[0], y = double(n.upper[1]) - n.lower[1],
-               z = double(n.upper[2]) - n.lower[2];
+double half_area(double lx, double ly, double lz, double ux, double uy, double uz) {
+  const double x = ux - lx, y = uy - ly, z = uz - lz;
   return x < 0 ? 0 : x * y + y * z + z * x;
 }
 
-// box_entry (kernels/bvh.cl) in double: the entry distance, or kNoHit.
-double box_entry(const GpuBvhNode& n, const D3& o, const D3& inv, double t_max) {
-  double t_near = -kNoHit, t_far = kNoHit;
-  for (int k = 0; k < 3; ++k) {
-    const double a = (double(n.lower[k]) - o[size_t(k)]) * inv[size_t(k)];
-    const double b = (double(n.upper[k]) - o[size_t(k)]) * inv[size_t(k)];
-    t_near = std::max(t_near, std::min(a, b));
-    t_far = std::min(t_far, std::max(a, b));
+// Child slot i's box of a node: its half area (0 for an empty slot).
+double slot_half_area(const GpuBvhNode& n, int i) {
+  return half_area(n.lower_x[i], n.lower_y[i], n.lower_z[i], n.upper_x[i], n.upper_y[i], n.upper_z[i]);
+}
+
+bool slot_used(const GpuBvhNode& n, int i) { return n.lower_x[i] <= n.upper_x[i]; }
+
+// The half area of a node's own box: the union of its children's.
+double node_half_area(const GpuBvhNode& n) {
+  double lo[3] = {kNoHit, kNoHit, kNoHit}, hi[3] = {-kNoHit, -kNoHit, -kNoHit};
+  for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+    if (!slot_used(n, i)) continue;
+    lo[0] = std::min(lo[0], double(n.lower_x[i]));
+    lo[1] = std::min(lo[1], double(n.lower_y[i]));
+    lo[2] = std::min(lo[2], double(n.lower_z[i]));
+    hi[0] = std::max(hi[0], double(n.upper_x[i]));
+    hi[1] = std::max(hi[1], double(n.upper_y[i]));
+    hi[2] = std::max(hi[2], double(n.upper_z[i]));
+  }
+  return half_area(lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+}
+
+// bvh_node_entries / bvh_slot_entry (kernels/bvh.cl) for slot i, in double: the entry distance,
+// or kNoHit. Near planes picked by the direction's signs, as there (an empty slot never hits).
+double slot_entry(const GpuBvhNode& n, int i, const D3& o, const D3& inv, double t_max) {
+  const float* lower[3] = {n.lower_x, n.lower_y, n.lower_z};
+  const float* upper[3] = {n.upper_x, n.upper_y, n.upper_z};
+  double t_near = 0, t_far = kNoHit;
+  for (size_t k = 0; k < 3; ++k) {
+    const bool negative = inv[k] < 0;
+    const double a = (double((negative ? upper : lower)[k][i]) - o[k]) * inv[k];
+    const double b = (double((negative ? lower : upper)[k][i]) - o[k]) * inv[k];
+    t_near = std::max(t_near, a);
+    t_far = std::min(t_far, b);
   }
   t_far *= 1.0000004;  // the kernels' 1 + 2 gamma(3)
-  const double entry = std::max(t_near, 0.0);
-  return entry <= t_far && entry < t_max ? entry : kNoHit;
+  return t_near <= t_far && t_near < t_max ? t_near : kNoHit;
 }
 
 // The nearest t > t_min where the ray meets the sphere (s0, n0, r as stored: centre s0 - r n0).
@@ -116,12 +140,13 @@ D3 hit_normal(const DeviceScene& ds, const StatsHit& h, const D3& p) {
 
 double bvh_sah_cost(const Bvh& bvh, double traversal_cost) {
   if (bvh.nodes.empty()) return 0;
-  const double root = half_area(bvh.nodes.front());
+  const double root = node_half_area(bvh.nodes.front());
   if (!(root > 0)) return 0;
   double cost = 0;
   for (const GpuBvhNode& n : bvh.nodes) {
-    const double weight = half_area(n) / root;
-    cost += weight * (n.count == 0u ? traversal_cost : double(n.count & CLPT_BVH_COUNT_MASK));
+    cost += traversal_cost * node_half_area(n) / root;
+    for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
+      if (n.count[i] != 0u) cost += double(n.count[i] & CLPT_BVH_COUNT_MASK) * slot_half_area(n, i) / root;
   }
   return cost;
 }
@@ -162,47 +187,59 @@ StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, Travers
   if (!nodes.empty()) {
     const D3 inv = inverse_direction(d);
     uint32_t stack[CLPT_BVH_STACK];
-    uint32_t depth = 0, node = 0;
-    ++counts.boxes;
-    bool done = box_entry(nodes[0], o, inv, hit.t) == kNoHit;
-    bool popped = false;
+    uint32_t depth = 0, node = 0, ref = 0;
+    bool open = true, done = false;
     while (!done) {
       ++counts.nodes;
-      const GpuBvhNode& n = nodes[node];
-      bool pop = true;
-      bool retest_missed = false;
-      if (popped) {
-        ++counts.boxes;
-        retest_missed = box_entry(n, o, inv, hit.t) == kNoHit;
-      }
-      if (retest_missed) {
-        // behind a nearer hit found since it was pushed: not opened
-      } else if (n.count == 0u) {
-        const uint32_t a = node + 1, b = n.first;
-        counts.boxes += 2;
-        const double ta = box_entry(nodes[a], o, inv, hit.t), tb = box_entry(nodes[b], o, inv, hit.t);
-        const bool hit_a = ta < kNoHit, hit_b = tb < kNoHit;
-        if (hit_a || hit_b) {
-          pop = false;
-          const bool a_first = hit_a && (!hit_b || ta <= tb);
-          node = a_first ? a : b;
-          if (hit_a && hit_b) stack[depth++] = a_first ? b : a;
+      bool leaf = false;
+      uint32_t first = 0, count = 0;
+      if (open) {
+        const GpuBvhNode& n = nodes[node];
+        std::array<std::pair<double, uint32_t>, CLPT_BVH_WIDTH> t;
+        for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+          counts.boxes += slot_used(n, i) ? 1 : 0;
+          t[size_t(i)] = {slot_entry(n, i, o, inv, hit.t), uint32_t(i)};
+        }
+        // Nearest first, as the kernels' sorting network (ties in either order: the same set is
+        // visited, and the counts differ only for rays with two children at one distance).
+        std::stable_sort(t.begin(), t.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (int k = CLPT_BVH_WIDTH - 1; k >= 1; --k)
+          if (t[size_t(k)].first < kNoHit) stack[depth++] = node << 2 | t[size_t(k)].second;
+        if (t[0].first < kNoHit) {
+          count = n.count[t[0].second];
+          first = n.child[t[0].second];
+          leaf = count != 0;
+          node = first;
+          open = !leaf;
+        } else {
+          open = false;
         }
       } else {
-        const uint32_t first = n.first, count = n.count & CLPT_BVH_COUNT_MASK;
-        if (n.count & CLPT_BVH_SPHERE_LEAF) {
-          for (uint32_t i = first; i < first + count; ++i) {
+        const GpuBvhNode& n = nodes[ref >> 2];
+        const int slot = int(ref & 3u);
+        ++counts.boxes;
+        if (slot_entry(n, slot, o, inv, hit.t) < kNoHit) {  // else: behind a nearer hit found since
+          count = n.count[slot];
+          first = n.child[slot];
+          leaf = count != 0;
+          node = first;
+          open = !leaf;
+        }
+      }
+      if (leaf) {
+        const uint32_t n_prims = count & CLPT_BVH_COUNT_MASK;
+        if (count & CLPT_BVH_SPHERE_LEAF) {
+          for (uint32_t i = first; i < first + n_prims; ++i) {
             ++counts.hierarchy_spheres;
-            const uint32_t index = ds.loop_spheres + i;  // the kernels' sphere buffer: loop spheres first
-            const double t = sphere_hit(ds.spheres[index], o, d, ray.t_min);
+            const double t = sphere_hit(ds.spheres[i], o, d, ray.t_min);  // the sphere buffer's index
             if (t < hit.t) {
               hit.t = t;
-              hit.sphere = int(index);
+              hit.sphere = int(i);
               hit.triangle = -1;
             }
           }
         } else {
-          for (uint32_t i = first; i < first + count; ++i) {
+          for (uint32_t i = first; i < first + n_prims; ++i) {
             ++counts.triangles;
             const double t = triangle_hit(ds.triangles[i], o, d);
             if (t < hit.t) {
@@ -213,10 +250,9 @@ StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, Travers
           }
         }
       }
-      popped = pop;
-      if (popped) {
+      if (!open) {
         done = depth == 0;
-        node = done ? 0 : stack[--depth];
+        ref = done ? 0 : stack[--depth];
       }
     }
   }

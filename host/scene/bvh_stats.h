@@ -1,7 +1,8 @@
 // Statistics of a device scene's hierarchy, on the host: its SAH cost, and the nodes and
 // primitives a ray visits, counted by a double-precision replica of the kernels' traversal
-// (kernels/bvh.cl, bvh_traverse: the same stack discipline, the nearer child first, the farther
-// pushed and its box tested again when popped) over a deterministic sample of rays (stats_rays).
+// (kernels/bvh.cl, bvh_traverse: the same stack discipline over the 4-wide nodes, the nearest hit
+// child first, the others pushed farthest first and their boxes tested again when popped) over a
+// deterministic sample of rays (stats_rays).
 // `clpt bench` reports them for every row with a hierarchy (docs/performance.md, "Traversal").
 // The replica decides the same boxes in double that the kernels decide in float, so its counts
 // are those of the kernels' order up to rays that graze a box; it is no renderer (no shading).
@@ -16,11 +17,11 @@
 
 namespace clpt {
 
-// The SAH cost of `bvh` by its own boxes, in units of one primitive test: the sum over interior
-// nodes of traversal_cost * A(node) / A(root) plus the sum over leaves of count * A(leaf) / A(root)
-// (A: surface area), the expected cost of a ray through the root under the heuristic's
-// assumptions; the quantity the builder minimises greedily (BvhBuildOptions). 0 with no nodes or a
-// root of no area.
+// The SAH cost of `bvh` by its own boxes, in units of one primitive test: the sum over its 4-wide
+// nodes of traversal_cost * A(node) / A(root) (a node's box: the union of its children's; one
+// test of its four boxes costs traversal_cost) plus the sum over leaves of count * A(leaf) /
+// A(root) (A: surface area), the expected cost of a ray through the root under the heuristic's
+// assumptions. 0 with no nodes or a root of no area.
 double bvh_sah_cost(const Bvh& bvh, double traversal_cost = 1.0);
 
 // A ray in the kernels' camera-relative coordinates; `direction` need not be unit. `t_min` is the
@@ -30,10 +31,13 @@ struct StatsRay {
   double t_min = 0;
 };
 
-// What one closest-hit query cost: nodes visited (iterations of bvh_traverse's loop: every node
-// fetched, including a popped node whose box is tested again and skipped), box tests, triangle
-// and sphere tests in leaves. The loop's spheres (DeviceScene::loop_spheres) are tested before the
-// hierarchy, as the kernels do, and count as sphere tests too.
+// What one closest-hit query cost: nodes visited (iterations of bvh_traverse's loop: a 4-wide node
+// opened, its four boxes in one test and, when its nearest hit child is a leaf, that leaf's
+// primitives tested in the same iteration; or an entry popped from the stack, its box tested
+// again, then its leaf tested or its node opened in the next iteration), box tests (a node's
+// occupied child slots, and each popped entry's), triangle and sphere tests in leaves. The loop's
+// spheres (DeviceScene::loop_spheres) are tested before the hierarchy, as the kernels do, and
+// count as sphere tests too.
 struct TraversalCounts {
   uint64_t rays = 0, hits = 0;
   uint64_t nodes = 0, boxes = 0, triangles = 0, hierarchy_spheres = 0, loop_spheres = 0;

@@ -295,7 +295,8 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   if (spheres_in_bvh) {
     sphere_order.insert(sphere_order.end(), out.bvh.sphere_order.begin(), out.bvh.sphere_order.end());
     for (GpuBvhNode& node : out.bvh.nodes)
-      if (node.count & CLPT_BVH_SPHERE_LEAF) node.first += out.loop_spheres;
+      for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
+        if (node.count[i] & CLPT_BVH_SPHERE_LEAF) node.child[i] += out.loop_spheres;
     out.spheres = permuted(out.spheres, sphere_order);
     std::vector<uint32_t> new_index(scene.spheres.size());
     for (size_t i = 0; i < sphere_order.size(); ++i) new_index[sphere_order[i]] = uint32_t(i);

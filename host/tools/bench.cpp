@@ -86,6 +86,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   row.hierarchy_spheres = ds.bvh.sphere_order.size();
   row.bvh_nodes = ds.bvh.nodes.size();
   row.bvh_depth = ds.bvh.depth;
+  row.bvh_stack_need = ds.bvh.stack_need;
   row.bvh_build_s = ds.bvh.build_seconds;
   row.bvh_build_threads = ds.bvh.build_threads;
   row.bvh_build_cpu_s = ds.bvh.build_cpu_seconds;
@@ -321,10 +322,10 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
     }
     if (r.bvh_nodes > 0) {
       std::snprintf(line, sizeof line,
-                    "    hierarchy: %llu triangles, %llu spheres, %llu nodes, depth %d, built in %.4f s (%.4f CPU-s) on "
+                    "    hierarchy: %llu triangles, %llu spheres, %llu 4-wide nodes, depth %d, stack %d, built in %.4f s (%.4f CPU-s) on "
                     "the host (%s builder, %d thread%s); %.1f device B/triangle\n",
                     static_cast<unsigned long long>(r.triangles), static_cast<unsigned long long>(r.hierarchy_spheres),
-                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_build_s, r.bvh_build_cpu_s,
+                    static_cast<unsigned long long>(r.bvh_nodes), r.bvh_depth, r.bvh_stack_need, r.bvh_build_s, r.bvh_build_cpu_s,
                     r.bvh_builder.c_str(), r.bvh_build_threads, r.bvh_build_threads == 1 ? "" : "s",
                     r.device_bytes_per_triangle);
       o << line;
@@ -377,7 +378,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"sphere_reads", r.sphere_reads}, {"paths_in_flight", r.paths_in_flight},
                           {"build_cold_s", r.build_cold_s}, {"build_cached_s", r.build_cached_s},
                           {"triangles", r.triangles}, {"hierarchy_spheres", r.hierarchy_spheres},
-                          {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_build_s", r.bvh_build_s},
+                          {"bvh_builder", r.bvh_builder}, {"bvh_nodes", r.bvh_nodes}, {"bvh_depth", r.bvh_depth}, {"bvh_stack_need", r.bvh_stack_need}, {"bvh_build_s", r.bvh_build_s},
                           {"device_bytes_per_triangle", r.device_bytes_per_triangle},
                           {"bvh_build_threads", r.bvh_build_threads}, {"bvh_build_cpu_s", r.bvh_build_cpu_s}, {"sah_cost", r.sah_cost},
                           {"traversal", {{"rays", r.stats_rays}, {"camera_rays", r.stats_camera_rays},

@@ -81,7 +81,8 @@ struct BenchRow {
   // device bytes its triangles take (GpuTriangle + GpuTriangleShading + the nodes, per triangle).
   std::string bvh_builder = "clpt";  // bvh_builder_name()
   uint64_t triangles = 0, hierarchy_spheres = 0, bvh_nodes = 0;
-  int bvh_depth = 0;
+  int bvh_depth = 0;       // 4-wide nodes on the longest path (Bvh::depth)
+  int bvh_stack_need = 0;  // the deepest traversal stack the tree can need (Bvh::stack_need)
   double bvh_build_s = 0;
   double device_bytes_per_triangle = 0;
   int bvh_build_threads = 1;
