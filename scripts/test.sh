@@ -20,10 +20,10 @@ if [[ $# -eq 0 ]]; then
 else
   ctest --output-on-failure -j "$(nproc)" "$@"
 fi
-# The whole suite (no ctest arguments) goes on with 20 s fuzz runs (side by side, one per processor) of the scene loader, mesh
+# The whole suite (no ctest arguments) goes on with 10 s fuzz runs (side by side, one per processor) of the scene loader, mesh
 # files and the option parser, then the unit and bad-input tests under ASan + UBSan, each in its own build
 # directory (about 6 minutes more on 2 cores).
 if [[ $# -eq 0 ]]; then
-  "$CLPT_ROOT/scripts/fuzz.sh" 20
+  "$CLPT_ROOT/scripts/fuzz.sh" 10
   "$CLPT_ROOT/scripts/sanitize.sh"
 fi
