@@ -3,8 +3,8 @@
 #  * the passes' paths/s and ray segments/s are this run's paths and segments over the passes' own
 #    time: in the EXR to 1e-6 (clpt:paths_per_s = clpt:paths / clpt:passes_s), and the printed
 #    figures are the EXR's to their printed digits;
-#  * the kernel build is shown apart from the passes, on the wall line, as compiled (--no-cache)
-#    or as a clpt cache hit;
+#  * the kernel build is shown apart from the passes, on the wall line, as compiled (--no-cache,
+#    and on PoCL always: clpt keeps no PoCL binaries; a clpt cache hit is cache_cli.sh's, on Oclgrind);
 #  * the wall line's parts do not overlap: scene load + device discovery + conversion + kernel
 #    build + first launch + passes + output writing <= wall, in the summary and in the EXR
 #    (clpt:elapsed_s, taken before the EXR itself is written);
@@ -104,11 +104,12 @@ summary=$(grep -o "[0-9.]* M paths/s" a.txt | head -1 | cut -d' ' -f1)
 [[ -n "$progress" && "$progress" == "$summary" ]] ||
   fail "the progress line's last rate '$progress' M samples/s is not the passes' $summary M paths/s"
 
-# 2. The same render again, with clpt's kernel cache: a cache hit, the same figures' relations.
-"$clpt" render "$scene" "${size[@]}" --spp 8 -o b.exr >/dev/null 2>&1 || fail "cache-filling render exited $?"
+# 2. The same render again, kernel cache on: clpt stores no PoCL binaries (PoCL's own cache
+#    serves, cl_device.h), so the build is "compiled" again; the same figures' relations. The
+#    cache hit's wording is checked on Oclgrind (cache_cli.sh).
 "$clpt" render "$scene" "${size[@]}" --spp 8 -o b.exr >b.txt 2>b.err || fail "render exited $?: $(cat b.err)"
 check b.txt b.exr $((32 * 24 * 8))
-grep -q "kernel build [0-9.]* s (clpt cache hit)" b.txt || fail "the build is not a cache hit: $(cat b.txt)"
+grep -q "kernel build [0-9.]* s (compiled)" b.txt || fail "PoCL's build is not 'compiled': $(cat b.txt)"
 
 # 3. A resumed render counts its own 8 spp of the 16, and shows the checkpoint's load.
 "$clpt" render "$scene" "${size[@]}" --spp 8 -q --checkpoint c.ckpt -o c8.exr || fail "checkpointed render exited $?"

@@ -13,6 +13,7 @@
 
 #include "mesh_test_util.h"
 #include "render/form_rule.h"
+#include "render/megakernel_renderer.h"
 #include "render/render_plan.h"
 #include "scene/bvh_stats.h"
 #include "scene/scene_loader.h"
@@ -293,6 +294,43 @@ TEST(FormRule, ThePlanTakesTheRuleUnlessFormIsGiven) {
   request = RenderRequest();
   request.scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/diffuse.toml");
   EXPECT_EQ(plan_render(request, {cpu}).devices.front().form, ExecutionForm::Megakernel);
+}
+
+// PoCL compiles a kernel per work-group size and per grid width class (cl_device.h): the plan
+// keeps every launch of a render on one of each, and stores no PoCL binaries in clpt's cache.
+TEST(RenderPlanOnPocl, OneCompiledKernelPerStageAndNoBinaryCache) {
+  RenderRequest request;
+  request.scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/diffuse.toml");
+  request.megakernel_loop = MegakernelLoop::PerPath;
+  DeviceInfo pocl = device_of(true);
+  pocl.platform_name = kPoclPlatformName;
+  pocl.compute_units = 64;  // 64 x 32768 paths would be the wavefront's pool elsewhere
+  DeviceInfo other = device_of(true);
+  other.compute_units = 64;
+  ASSERT_EQ(pocl.uniform_launch_limit(), 64512u);
+  ASSERT_EQ(other.uniform_launch_limit(), 0u);
+
+  RenderPlan plan = plan_render(request, {pocl, other});
+  const DevicePlan& p = plan.devices[0];
+  const DevicePlan& o = plan.devices[1];
+  EXPECT_EQ(p.local_size, MegakernelRenderer::kPartialLaunchLocalSize);  // not the driver's choice
+  EXPECT_EQ(p.sizing.max_jobs, 64512u);
+  EXPECT_EQ(o.local_size, 0u);
+  EXPECT_EQ(o.sizing.max_jobs, UINT32_MAX);
+  EXPECT_FALSE(p.kernel_cache);
+  EXPECT_TRUE(o.kernel_cache);
+  EXPECT_NE(explain_plan(plan).find("kernel cache: the driver's own"), std::string::npos);
+  EXPECT_NE(explain_plan(plan).find("and 64512 paths (the driver's one compiled kernel)"), std::string::npos);
+
+  request.form = ExecutionForm::Wavefront;
+  plan = plan_render(request, {pocl, other});
+  EXPECT_EQ(plan.devices[0].paths_in_flight, 64512u);
+  EXPECT_EQ(plan.devices[1].paths_in_flight, 64u * 32768u);
+  EXPECT_EQ(plan.devices[0].sizing.max_jobs, UINT32_MAX);  // the pool bounds the stage launches
+  request.use_kernel_cache = false;  // --no-cache: off everywhere, and nothing more to say
+  plan = plan_render(request, {pocl, other});
+  EXPECT_FALSE(plan.devices[1].kernel_cache);
+  EXPECT_EQ(explain_plan(plan).find("kernel cache: the driver's own"), std::string::npos);
 }
 
 }  // namespace

@@ -61,6 +61,17 @@ TEST(LaunchSizing, BoundsAndTails) {
   EXPECT_EQ(next_launch_pixels(whole, 250000, 64, 1e3, 10), 100000u);
 }
 
+TEST(LaunchSizing, JobBoundKeepsEveryLaunchUnderTheDriversWidth) {
+  // PoCL's one compiled kernel (cl_device.h): pixels x samples of a launch at most max_jobs.
+  LaunchSizing whole{0, 4096, 1u << 20, 64512};
+  EXPECT_EQ(next_launch_pixels(whole, 1000000, 16, 1e3, 10), 64512u / 16);
+  EXPECT_EQ(next_launch_pixels(whole, 4032 + 100, 16, 1e3, 10), 4032u);  // no tail folded past it
+  EXPECT_EQ(next_launch_pixels(whole, 4000, 16, 1e3, 10), 4000u);
+  EXPECT_EQ(next_launch_pixels(whole, 1000, 100000, 1e3, 10), 1u);  // a pixel's samples alone exceed it
+  LaunchSizing timed{0.075, 4096, 1u << 20, 64512};
+  EXPECT_EQ(next_launch_pixels(timed, 1000000, 1, 1e9, 1000000), 64512u);
+}
+
 TEST(Film, PartialLaunchesCountAsOnePass) {
   Film film(3, 2);
   GpuPixelPass p{};

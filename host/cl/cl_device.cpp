@@ -77,6 +77,12 @@ DeviceInfo describe(cl_platform_id platform, const std::string& platform_name, c
 
 bool DeviceInfo::is_pocl_cpu() const { return is_cpu && platform_name == kPoclPlatformName; }
 
+// PoCL's limit is USHRT_MAX work-items a dimension (its CPU drivers' grid_width_specialization_limit);
+// 64512 is the largest multiple of 1024 (every work-group size clpt uses divides it) below it.
+uint32_t DeviceInfo::uniform_launch_limit() const { return platform_name == kPoclPlatformName ? 64512u : 0u; }
+
+bool DeviceInfo::keeps_own_kernel_cache() const { return platform_name == kPoclPlatformName; }
+
 std::string DeviceInfo::label() const {
   return "device '" + name + "' (" + platform_name + (is_simulator ? ", a simulator)" : ")");
 }

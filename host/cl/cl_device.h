@@ -41,6 +41,16 @@ struct DeviceInfo {
   // PoCL's CPU device (the platform clpt's tests and CI run on): the one whose compiler clpt can
   // read (vectoriser remarks) and whose vectoriser width it can set (cl/pocl_vectoriser.h).
   bool is_pocl_cpu() const;
+  // Work-items a launch may have and still run the kernel the first launch compiled; 0: any.
+  // PoCL compiles a separate kernel for launches of 65535 or more work-items a dimension (it
+  // specialises its work-group functions on the grid's width, `-smallgrid` in its cache), so a
+  // render whose small first launch and large later launches straddle that width compiled every
+  // kernel twice; clpt keeps PoCL's launches under it (docs/performance.md "One compile a kernel").
+  uint32_t uniform_launch_limit() const;
+  // The driver keeps its own on-disk cache of built programs and compiled kernels (PoCL), so clpt
+  // stores none of its binaries: fetching one made PoCL compile every kernel once more (a generic
+  // copy for the binary), and a program made from it compiled its launches' kernels again.
+  bool keeps_own_kernel_cache() const;
 };
 
 // Every device of every platform, in platform order. Throws when there is no platform at all.

@@ -61,7 +61,7 @@ int budget(const KernelsOptions& o) {
   std::fprintf(stderr, "kernels budget: every covering variant built from source on %s, driver %s\n",
                device.label().c_str(), device.driver_version.c_str());
   const auto rows = measure_kernel_budget(
-      device, diffuse, [](const std::string& name) { std::fprintf(stderr, "  building %s\n", name.c_str()); },
+      device, diffuse, covering_kernel_variants(), [](const std::string& name) { std::fprintf(stderr, "  building %s\n", name.c_str()); },
       [](const std::string& log) { std::fprintf(stderr, "the first variant's build log:\n%s\n", log.c_str()); });
   std::fputs(kernel_budget_tsv(rows).c_str(), stdout);
   return 0;

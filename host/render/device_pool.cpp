@@ -83,8 +83,8 @@ DevicePool::DevicePool(const RenderPlan& plan, const DeviceScene& scene, FaultPl
   }
   std::vector<std::thread> threads;
   for (size_t i = 1; i < members_.size(); ++i)
-    threads.emplace_back([&, i] { build(*members_[i], plan.devices[i], plan.use_kernel_cache, scene); });
-  build(*members_[0], plan.devices[0], plan.use_kernel_cache, scene);
+    threads.emplace_back([&, i] { build(*members_[i], plan.devices[i], scene); });
+  build(*members_[0], plan.devices[0], scene);
   for (std::thread& t : threads) t.join();
   if (fatal_) std::rethrow_exception(fatal_);
   if (working_count() == 0) throw_every_device_failed();
@@ -97,13 +97,13 @@ DevicePool::DevicePool(const RenderPlan& plan, const DeviceScene& scene, FaultPl
 
 DevicePool::~DevicePool() = default;
 
-void DevicePool::build(Member& m, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene) {
+void DevicePool::build(Member& m, const DevicePlan& plan, const DeviceScene& scene) {
   try {
     if (faults_.fails_build(m.position))
       FaultPlan::throw_injected(CL_BUILD_PROGRAM_FAILURE, "clBuildProgram", m.info.label());
     check_precision_supported(plan.features.precision, m.info);
     m.ctx = std::make_unique<DeviceContext>(m.info);
-    if (use_kernel_cache) m.ctx->use_default_kernel_cache();
+    if (plan.kernel_cache) m.ctx->use_default_kernel_cache();
     m.share.device = m.ctx->where();
     check_device_memory(plan.memory, m.info);
     m.renderer = make_renderer(plan, *m.ctx, scene);

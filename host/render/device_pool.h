@@ -111,7 +111,7 @@ class DevicePool {
     uint64_t launch = 0;
   };
 
-  void build(Member& member, const DevicePlan& plan, bool use_kernel_cache, const DeviceScene& scene);
+  void build(Member& member, const DevicePlan& plan, const DeviceScene& scene);
   void warm_up(Member& member, const GpuRenderParams& params);
   // `first`: the range run_pass handed the member before its thread started.
   void work(Member& member, const GpuRenderParams& params, const GpuSampleSlot* slots, const PassSink& sink,

@@ -30,6 +30,13 @@ LaunchSizing sizing_for(const DevicePlan& d, const RenderRequest& request, size_
   sizing.first_pixels = std::clamp(image_pixels / 64, 1u, 4096u);
   sizing.max_pixels =
       uint32_t(std::clamp<uint64_t>(launch_buffer_budget(d.device) / sizeof(GpuPixelPass), 1, UINT32_MAX));
+  // A megakernel launch has a work-item per path (rounded up to its work-groups): under the width
+  // at which the driver would compile the kernel again (cl_device.h), as the first launch is.
+  const uint32_t limit = d.device.uniform_launch_limit();
+  if (limit > 0 && d.form == ExecutionForm::Megakernel) {
+    const uint32_t group = uint32_t(std::max<size_t>(d.local_size, 1));
+    sizing.max_jobs = std::max(group, limit / group * group);
+  }
   return sizing;
 }
 
@@ -124,12 +131,17 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
       d.features.lockstep_group =
           lockstep_group_for(request.megakernel_loop, d.device, request.local_size);
       d.local_size = d.features.lockstep_group ? d.features.lockstep_group : request.local_size;
+      // PoCL compiles a kernel per work-group size: left to choose, it picks a new one for each
+      // whole-image launch size, so there every launch gets the partial launches' size.
+      if (d.local_size == 0 && d.device.uniform_launch_limit() > 0)
+        d.local_size = MegakernelRenderer::kPartialLaunchLocalSize;
     } else {
       d.entry_file = "wavefront.cl";
       d.local_size = request.local_size ? request.local_size : WavefrontRenderer::kDefaultLocalSize;
       d.paths_in_flight =
           request.paths_in_flight ? request.paths_in_flight : WavefrontRenderer::default_paths_in_flight(d.device);
     }
+    d.kernel_cache = request.use_kernel_cache && !d.device.keeps_own_kernel_cache();
     // Every texel goes into one buffer: it must fit the device's largest allocation.
     if (d.device.max_alloc_bytes > 0) check_texture_memory(scene, d.device.max_alloc_bytes, "device '" + d.device.name + "'");
     d.sizing = sizing_for(d, request, devices.size(), plan.image_pixels);
@@ -160,6 +172,8 @@ std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>&
   if (!plan.textures.empty()) o << "textures (docs/textures.md):\n" << plan.textures;
   for (const DevicePlan& d : plan.devices) {
     o << "device " << d.position << ": " << d.device.label() << "\n";
+    if (plan.use_kernel_cache && !d.kernel_cache)
+      o << "  kernel cache: the driver's own (clpt stores no binaries of this driver's: docs/cli.md)\n";
     o << "  execution form: " << execution_form_name(d.form) << " (" << d.form_reason << "), kernel file "
       << d.entry_file << "\n";
     if (d.form == ExecutionForm::Megakernel)
@@ -185,7 +199,11 @@ std::string explain_plan(const RenderPlan& plan, const std::vector<std::string>&
                                       std::to_string(int(d.sizing.target_s * 1000 + 0.5)) + " ms, the first " +
                                       std::to_string(d.sizing.first_pixels) + " pixels"
                                 : std::string("one per pass"))
-      << ", at most " << d.sizing.max_pixels << " pixels (device memory)\n";
+      << ", at most " << d.sizing.max_pixels << " pixels (device memory)"
+      << (d.sizing.max_jobs != UINT32_MAX
+              ? " and " + std::to_string(d.sizing.max_jobs) + " paths (the driver's one compiled kernel)"
+              : std::string())
+      << "\n";
     o << "  device memory: " << format_bytes(d.memory.total_bytes) << " (largest buffer '" << d.memory.largest_label
       << "', " << format_bytes(d.memory.largest_bytes) << ")\n";
     std::istringstream kernel(explain_kernel_options(d.features));

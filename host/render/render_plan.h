@@ -33,6 +33,7 @@ struct DevicePlan {
   // megakernel's whole-image launches; its partial launches use kPartialLaunchLocalSize).
   size_t local_size = 0;
   uint32_t paths_in_flight = 0;  // wavefront path slots; 0 for the megakernel
+  bool kernel_cache = false;     // clpt's binary cache: asked for and the driver keeps none of its own
   LaunchSizing sizing;           // how this device's ranges of a pass are sized
   MemoryEstimate memory;         // device memory the render needs there
 };

@@ -8,8 +8,12 @@
 
 namespace clpt {
 uint32_t WavefrontRenderer::default_paths_in_flight(const DeviceInfo& device) {
-  if (device.is_cpu) return std::clamp<uint32_t>(device.compute_units * 32768u, 32768u, 1u << 21);
-  return std::clamp<uint32_t>(device.compute_units * 16384u, 65536u, 4u << 20);
+  const uint32_t paths = device.is_cpu ? std::clamp<uint32_t>(device.compute_units * 32768u, 32768u, 1u << 21)
+                                       : std::clamp<uint32_t>(device.compute_units * 16384u, 65536u, 4u << 20);
+  // The stage kernels' launches span the active paths: under the width at which the driver would
+  // compile them again (cl_device.h), as the first launch is.
+  const uint32_t limit = device.uniform_launch_limit();
+  return limit > 0 ? std::min(paths, limit) : paths;
 }
 
 WavefrontRenderer::WavefrontRenderer(DeviceContext& ctx, const DeviceScene& scene,

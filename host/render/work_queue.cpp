@@ -40,7 +40,7 @@ uint32_t balanced_range_pixels(uint32_t launch, uint32_t remaining, double share
 uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
                             double pixel_samples_per_s, uint32_t previous) {
   if (remaining == 0) return 0;
-  const double max_pixels = std::max(1u, sizing.max_pixels);
+  const double max_pixels = std::max(1u, std::min(sizing.max_pixels, sizing.max_jobs / std::max(1u, samples)));
   double n = max_pixels;
   if (sizing.target_s > 0) {
     n = pixel_samples_per_s > 0 ? pixel_samples_per_s * sizing.target_s / std::max(1u, samples)

@@ -51,6 +51,7 @@ struct LaunchSizing {
   double target_s = 0.075;           // wall time per launch; <= 0: one launch per pass
   uint32_t first_pixels = 4096;      // pixels of the first launch, before any measurement
   uint32_t max_pixels = UINT32_MAX;  // memory bound: the pass buffer holds 32 B per pixel
+  uint32_t max_jobs = UINT32_MAX;    // pixels x samples of a launch (PoCL: one compiled kernel, cl_device.h)
 };
 
 // A launch may cover at most this many times the pixels of the one before: small launches
@@ -61,7 +62,7 @@ constexpr uint32_t kMaxLaunchGrowth = 4;
 // samples: samples per pixel of the pass; pixel_samples_per_s: measured throughput of the last
 // launch (0: none yet, use first_pixels); previous: pixels of the last launch (0: none). The
 // result is in [1, remaining] (0 when remaining is 0); a tail of under a quarter of a launch is
-// folded into it, so passes do not end in a sliver.
+// folded into it, so passes do not end in a sliver, unless that breaks the memory or job bound.
 uint32_t next_launch_pixels(const LaunchSizing& sizing, uint32_t remaining, uint32_t samples,
                             double pixel_samples_per_s, uint32_t previous);
 

@@ -69,11 +69,12 @@ void parse_nvidia_build_log(const std::string& log, std::vector<KernelBudgetRow>
 }
 
 std::vector<KernelBudgetRow> measure_kernel_budget(const DeviceInfo& device, const Scene& diffuse,
+                                                   const std::vector<KernelVariant>& variants,
                                                    void (*on_variant)(const std::string&),
                                                    void (*on_log)(const std::string&)) {
   DeviceContext ctx(device);  // no kernel cache: every program is compiled, so the log is fresh
   std::vector<KernelBudgetRow> all;
-  for (const KernelVariant& v : covering_kernel_variants()) {
+  for (const KernelVariant& v : variants) {
     if (v.precision() == Precision::Double && !device.fp64) continue;
     if (on_variant) on_variant(v.name());
     const VariantProgram program = variant_program(variant_scene(diffuse, v), v);

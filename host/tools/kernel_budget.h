@@ -13,6 +13,7 @@
 
 #include "cl/cl_device.h"
 #include "scene/scene.h"
+#include "tools/kernel_variants.h"
 
 namespace clpt {
 
@@ -34,11 +35,12 @@ struct KernelBudgetRow {
 // Fills the rows' log fields by kernel name; rows the log does not name keep -1.
 void parse_nvidia_build_log(const std::string& log, std::vector<KernelBudgetRow>& rows);
 
-// Builds every covering variant of `diffuse` (scenes/diffuse.toml) on `device` and returns a row
-// per kernel, variant by variant. on_variant sees each variant's name before its build (progress);
+// Builds `variants` (the CLI: every covering variant, tools/kernel_variants.h) of `diffuse`
+// (scenes/diffuse.toml) on `device` and returns a row per kernel, variant by variant. on_variant sees each variant's name before its build (progress);
 // on_log sees the first variant's build log where it is parsed (NVIDIA), so that a report shows
 // the lines the figures come from.
 std::vector<KernelBudgetRow> measure_kernel_budget(const DeviceInfo& device, const Scene& diffuse,
+                                                   const std::vector<KernelVariant>& variants,
                                                    void (*on_variant)(const std::string&) = nullptr,
                                                    void (*on_log)(const std::string&) = nullptr);
 
