@@ -21,8 +21,8 @@ if [[ -z ${OCL_ICD_VENDORS:-} ]]; then
 fi
 export CLPT_CACHE_DIR=$work/cache
 unset POCL_DEVICES
-# Oclgrind simulates a few hundred paths/s: 8x6 pixels, 16 spp (the grid sampler's period).
-args=(scenes/diffuse.toml --width 8 --height 6 --spp 16)
+# Oclgrind simulates a few hundred paths/s: 8x6 pixels, 1 jittered sample each.
+args=(scenes/diffuse.toml --width 8 --height 6 --spp 1 --sampler jitter)
 
 "$clpt" render "${args[@]}" --device cpu --explain -o "$work/p.pfm" > "$work/pocl.txt"
 grep -q "kernel cache: the driver's own" "$work/pocl.txt" ||
