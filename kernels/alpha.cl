@@ -78,7 +78,7 @@ CLPT_INLINE bool alpha_cut(__global const uchar* texturing, uint triangle, Trian
     const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
     float u, v;
     triangle_uv(triangle_texturing(texturing, triangle), (float)(r.u * inv), (float)(r.v * inv), (float)(r.w * inv), &u, &v);
-    alpha *= clamp(texture_lookup_alpha(texturing, base, u, v), 0.0f, 1.0f);
+    alpha *= clamp(texture_lookup_alpha(texturing, base, u, v, CLPT_BASE_STORAGES), 0.0f, 1.0f);
   }
 #if CLPT_HAS_VERTEX_COLORS
   {

@@ -388,7 +388,7 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sph
   if (material == CLPT_TEXTURE_NONE) return;
   __global const GpuMaterialTextures* mt = material_textures(texturing, material);
   if (mt->base_color != CLPT_TEXTURE_NONE) {
-    const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v);
+    const TexelRgba c = texture_lookup(texturing, mt->base_color, u, v, CLPT_BASE_STORAGES);
     m->reflectance = v3_mul(m->reflectance, v3(clamp(c.r, 0.0f, 1.0f), clamp(c.g, 0.0f, 1.0f), clamp(c.b, 0.0f, 1.0f)));
   }
 #if CLPT_HAS_VERTEX_COLORS
@@ -404,16 +404,16 @@ CLPT_INLINE void apply_textures(const SceneBuffers* scene, int triangle, int sph
 #if CLPT_HAS_PBR
   if (mt->metallic != CLPT_TEXTURE_NONE) {
     const uint index = mt->metallic;
-    m->metallic *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v), 0.0f, 1.0f);
+    m->metallic *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v, CLPT_MR_STORAGES), 0.0f, 1.0f);
   }
   if (mt->roughness != CLPT_TEXTURE_NONE) {
     const uint index = mt->roughness;
-    m->roughness *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v), 0.0f, 1.0f);
+    m->roughness *= clamp(texture_lookup_channel(texturing, index, texture_at(texturing, index)->channel, u, v, CLPT_MR_STORAGES), 0.0f, 1.0f);
   }
 #endif
 #if CLPT_HAS_EMISSION_TEXTURES
   if (mt->emission != CLPT_TEXTURE_NONE) {
-    const TexelRgba c = texture_lookup(texturing, mt->emission, u, v);
+    const TexelRgba c = texture_lookup(texturing, mt->emission, u, v, CLPT_EMISSION_STORAGES);
     m->emission = v3_mul(m->emission, v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f)));
   }
 #endif

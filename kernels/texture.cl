@@ -14,7 +14,13 @@
  * Specialisation (kernel_options.cpp): CLPT_HAS_TEXTURES (a textured material on a mesh or sphere),
  * CLPT_TEXEL_STORAGES (bit 1 << CLPT_TEXEL_* of each storage used), CLPT_TEXEL_CHANNELS (bit
  * 1 << (n - 1) of each channel count), CLPT_TEXTURE_WRAPS (bit 1 << CLPT_WRAP_*),
- * CLPT_HAS_NORMAL_MAPS and CLPT_HAS_EMISSION_TEXTURES. A specialised kernel names them only when
+ * CLPT_HAS_NORMAL_MAPS and CLPT_HAS_EMISSION_TEXTURES; and per material slot the storages its images
+ * use, CLPT_BASE_STORAGES (base colour and alpha), CLPT_MR_STORAGES (metallic and roughness),
+ * CLPT_NORMAL_STORAGES and CLPT_EMISSION_STORAGES (each a subset of CLPT_TEXEL_STORAGES, or the
+ * float storage alone where no image fills the slot): each lookup takes its slot's mask, a
+ * constant the compiler folds, so a scene whose base colour is 8-bit and whose normal map is half
+ * compiles an 8-bit base colour lookup (with sRGB) and a half normal-map lookup, not every storage
+ * in each. A specialised kernel names them only when
  * its scene has textures: absent, they are off there (CLPT_ESTIMATOR fixed) and on in the generic
  * kernel. CLPT_HAS_SPHERE_TEXTURES (a textured material on a sphere: the GpuTexturing.spheres
  * section, read at the spherical mapping's coordinates, sphere_uv) is named only when on, and is
@@ -40,6 +46,18 @@
 #endif
 #ifndef CLPT_TEXEL_STORAGES
 #define CLPT_TEXEL_STORAGES 7
+#endif
+#ifndef CLPT_BASE_STORAGES
+#define CLPT_BASE_STORAGES CLPT_TEXEL_STORAGES
+#endif
+#ifndef CLPT_MR_STORAGES
+#define CLPT_MR_STORAGES CLPT_TEXEL_STORAGES
+#endif
+#ifndef CLPT_NORMAL_STORAGES
+#define CLPT_NORMAL_STORAGES CLPT_TEXEL_STORAGES
+#endif
+#ifndef CLPT_EMISSION_STORAGES
+#define CLPT_EMISSION_STORAGES CLPT_TEXEL_STORAGES
 #endif
 #ifndef CLPT_TEXEL_CHANNELS
 #define CLPT_TEXEL_CHANNELS 15
@@ -155,54 +173,44 @@ CLPT_INLINE float half_bits_to_float(uint h) {
   return as_float(exponent == 0u ? subnormal : (exponent == 31u ? special : normal));
 }
 
-/* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). A kernel compiled for one
- * storage reads it typed. One compiled for several reads the aligned 32-bit word holding the
+/* Sample `at` of the texels (CLPT_TEXEL_*: 8-bit 0, half 1, float 2). `storages`: the storages the
+ * lookup can meet (a compile-time constant: its slot's mask). A lookup of one storage reads it
+ * typed. One of several reads the aligned 32-bit word holding the
  * sample (byte offset at << storage: the storage's value is log2 of its size) and takes the
  * sample's bits out of it: one read per sample rather than one per storage, which in a bilinear
  * RGBA lookup is 16 gathers rather than 48, and a third of the code, PoCL's cold compile of the
  * widest texture kernels included (docs/textures.md, "Cost"). The host starts every image's texels
  * on a 16-byte boundary and pads them to one (device_textures.cpp), so the word lies in the
  * image's own bytes; texels are little-endian, as on every OpenCL device clpt runs on. */
-CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint at) {
-#if CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_U8)
-  (void)storage;
-  return (float)texels[at] * (1.0f / 255.0f);
-#elif CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_HALF)
-  (void)storage;
-  return half_bits_to_float(((__global const ushort*)texels)[at]);
-#elif CLPT_TEXEL_STORAGES == (1 << CLPT_TEXEL_FLOAT)
-  (void)storage;
-  return ((__global const float*)texels)[at];
-#else
+CLPT_INLINE float texel_sample(__global const uchar* texels, uint storage, uint at, const uint storages) {
+  if (storages == (1u << CLPT_TEXEL_U8)) return (float)texels[at] * (1.0f / 255.0f);
+  if (storages == (1u << CLPT_TEXEL_HALF)) return half_bits_to_float(((__global const ushort*)texels)[at]);
+  if (storages == (1u << CLPT_TEXEL_FLOAT)) return ((__global const float*)texels)[at];
   const uint byte = at << storage;
   const uint word = ((__global const uint*)texels)[byte >> 2];
   const uint bits = word >> ((byte & 3u) * 8u);
   float v = (float)(bits & 0xffu) * (1.0f / 255.0f);
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_HALF)
-  v = (storage & 1u) != 0u ? half_bits_to_float(bits & 0xffffu) : v;
-#endif
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_FLOAT)
-  v = (storage & 2u) != 0u ? as_float(word) : v;
-#endif
+  if ((storages & (1u << CLPT_TEXEL_HALF)) != 0u) v = (storage & 1u) != 0u ? half_bits_to_float(bits & 0xffffu) : v;
+  if ((storages & (1u << CLPT_TEXEL_FLOAT)) != 0u) v = (storage & 2u) != 0u ? as_float(word) : v;
   return v;
-#endif
 }
 
 /* The texel (x, y) as linear RGBA. Every read stays inside the texel's own channels (channel k
  * reads min(k, channels - 1)). */
-CLPT_INLINE TexelRgba texel_fetch(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {
+CLPT_INLINE TexelRgba texel_fetch(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y,
+                                  const uint storages) {
   __global const uchar* texels = texturing + t->texels;
   const uint channels = t->channels;
   const uint storage = t->storage;
   const uint last = channels - 1u;
   const uint first = (y * t->width + x) * channels;
-  const float c0 = texel_sample(texels, storage, first);
+  const float c0 = texel_sample(texels, storage, first, storages);
 #if CLPT_TEXEL_CHANNELS == 1
   const float c1 = c0, c2 = c0, c3 = c0;
 #else
-  const float c1 = texel_sample(texels, storage, first + min(1u, last));
-  const float c2 = texel_sample(texels, storage, first + min(2u, last));
-  const float c3 = texel_sample(texels, storage, first + min(3u, last));
+  const float c1 = texel_sample(texels, storage, first + min(1u, last), storages);
+  const float c2 = texel_sample(texels, storage, first + min(2u, last), storages);
+  const float c3 = texel_sample(texels, storage, first + min(3u, last), storages);
 #endif
   const bool colour = channels >= 3u;          /* 3, 4: RGB; 1, 2: grey */
   const bool alpha = (channels & 1u) == 0u;    /* 2, 4 */
@@ -211,13 +219,13 @@ CLPT_INLINE TexelRgba texel_fetch(__global const uchar* texturing, __global cons
   rgba.g = colour ? c1 : c0;
   rgba.b = colour ? c2 : c0;
   rgba.a = alpha ? (colour ? c3 : c1) : 1.0f;
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
-  /* An sRGB texel is 8-bit: its value v / 255 indexes the table (the rounding recovers v). */
-  const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u;
-  rgba.r = srgb ? kSrgbToLinear[(uint)(rgba.r * 255.0f + 0.5f) & 255u] : rgba.r;
-  rgba.g = srgb ? kSrgbToLinear[(uint)(rgba.g * 255.0f + 0.5f) & 255u] : rgba.g;
-  rgba.b = srgb ? kSrgbToLinear[(uint)(rgba.b * 255.0f + 0.5f) & 255u] : rgba.b;
-#endif
+  if ((storages & (1u << CLPT_TEXEL_U8)) != 0u) {
+    /* An sRGB texel is 8-bit: its value v / 255 indexes the table (the rounding recovers v). */
+    const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u;
+    rgba.r = srgb ? kSrgbToLinear[(uint)(rgba.r * 255.0f + 0.5f) & 255u] : rgba.r;
+    rgba.g = srgb ? kSrgbToLinear[(uint)(rgba.g * 255.0f + 0.5f) & 255u] : rgba.g;
+    rgba.b = srgb ? kSrgbToLinear[(uint)(rgba.b * 255.0f + 0.5f) & 255u] : rgba.b;
+  }
   return rgba;
 }
 
@@ -252,13 +260,13 @@ CLPT_INLINE TexelFootprint texture_footprint(__global const GpuTexture* t, float
   return f;
 }
 
-/* Texture `index` at mesh coordinates (u, v): linear RGBA. */
-CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index, float u, float v) {
+/* Texture `index` at mesh coordinates (u, v): linear RGBA. `storages`: the slot's mask (above). */
+CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index, float u, float v, const uint storages) {
   __global const GpuTexture* t = texture_at(texturing, index);
   const TexelFootprint f = texture_footprint(t, u, v);
   const uint ix0 = f.ix0, ix1 = f.ix1, iy0 = f.iy0, iy1 = f.iy1;
-  const TexelRgba a = texel_fetch(texturing, t, ix0, iy0), b = texel_fetch(texturing, t, ix1, iy0);
-  const TexelRgba c = texel_fetch(texturing, t, ix0, iy1), d = texel_fetch(texturing, t, ix1, iy1);
+  const TexelRgba a = texel_fetch(texturing, t, ix0, iy0, storages), b = texel_fetch(texturing, t, ix1, iy0, storages);
+  const TexelRgba c = texel_fetch(texturing, t, ix0, iy1, storages), d = texel_fetch(texturing, t, ix1, iy1, storages);
   const float w00 = f.w00, w10 = f.w10, w01 = f.w01, w11 = f.w11;
   TexelRgba out;
   out.r = w00 * a.r + w10 * b.r + w01 * c.r + w11 * d.r;
@@ -271,20 +279,20 @@ CLPT_INLINE TexelRgba texture_lookup(__global const uchar* texturing, uint index
 /* Channel `channel` (0 to 3) of texel (x, y) as linear RGBA: rgba_channel(texel_fetch(...),
  * channel), reading one sample rather than four (a scalar parameter's lookup). */
 CLPT_INLINE float texel_channel(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y,
-                                uint channel) {
+                                uint channel, const uint storages) {
   const uint channels = t->channels;
   const bool colour = channels >= 3u;       /* 3, 4: RGB; 1, 2: grey */
   const bool alpha = (channels & 1u) == 0u; /* 2, 4 */
   const bool wants_alpha = channel == 3u;
   /* RGB's channel k is sample k, grey's sample 0; alpha is the last sample, or 1 without one. */
   const uint sample = colour ? channel : (wants_alpha ? 1u : 0u);
-  const float c = texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + min(sample, channels - 1u));
-#if CLPT_TEXEL_STORAGES & (1 << CLPT_TEXEL_U8)
-  const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u && !wants_alpha;
-  const float decoded = srgb ? kSrgbToLinear[(uint)(c * 255.0f + 0.5f) & 255u] : c;
-#else
-  const float decoded = c;
-#endif
+  const float c =
+      texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + min(sample, channels - 1u), storages);
+  float decoded = c;
+  if ((storages & (1u << CLPT_TEXEL_U8)) != 0u) {
+    const bool srgb = (t->flags & CLPT_TEXTURE_SRGB) != 0u && !wants_alpha;
+    decoded = srgb ? kSrgbToLinear[(uint)(c * 255.0f + 0.5f) & 255u] : c;
+  }
   return wants_alpha ? (alpha ? c : 1.0f) : decoded;
 }
 
@@ -292,29 +300,34 @@ CLPT_INLINE float texel_channel(__global const uchar* texturing, __global const 
  * rgba_channel(texture_lookup(...), channel), reading one sample of each of the four texels (the
  * metallic and roughness lookups: a quarter of the reads and table lookups, and of the code PoCL
  * compiles for them, docs/performance.md "Fixed costs"). */
-CLPT_INLINE float texture_lookup_channel(__global const uchar* texturing, uint index, uint channel, float u, float v) {
+CLPT_INLINE float texture_lookup_channel(__global const uchar* texturing, uint index, uint channel, float u, float v,
+                                         const uint storages) {
   __global const GpuTexture* t = texture_at(texturing, index);
   const TexelFootprint f = texture_footprint(t, u, v);
-  const float a = texel_channel(texturing, t, f.ix0, f.iy0, channel), b = texel_channel(texturing, t, f.ix1, f.iy0, channel);
-  const float c = texel_channel(texturing, t, f.ix0, f.iy1, channel), d = texel_channel(texturing, t, f.ix1, f.iy1, channel);
+  const float a = texel_channel(texturing, t, f.ix0, f.iy0, channel, storages),
+              b = texel_channel(texturing, t, f.ix1, f.iy0, channel, storages);
+  const float c = texel_channel(texturing, t, f.ix0, f.iy1, channel, storages),
+              d = texel_channel(texturing, t, f.ix1, f.iy1, channel, storages);
   return f.w00 * a + f.w10 * b + f.w01 * c + f.w11 * d;
 }
 
 /* The alpha of texel (x, y): its last channel for 2 or 4 channels, else 1 (texel_fetch's .a,
  * without reading the colour channels). */
-CLPT_INLINE float texel_alpha(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y) {
+CLPT_INLINE float texel_alpha(__global const uchar* texturing, __global const GpuTexture* t, uint x, uint y,
+                              const uint storages) {
   const uint channels = t->channels;
   if ((channels & 1u) != 0u) return 1.0f;
-  return texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + channels - 1u);
+  return texel_sample(texturing + t->texels, t->storage, (y * t->width + x) * channels + channels - 1u, storages);
 }
 
 /* Texture `index`'s alpha at mesh coordinates (u, v): texture_lookup's .a, reading one channel
  * of the four texels (alpha.cl's test runs inside the ray queries, for every candidate hit). */
-CLPT_INLINE float texture_lookup_alpha(__global const uchar* texturing, uint index, float u, float v) {
+CLPT_INLINE float texture_lookup_alpha(__global const uchar* texturing, uint index, float u, float v,
+                                       const uint storages) {
   __global const GpuTexture* t = texture_at(texturing, index);
   const TexelFootprint f = texture_footprint(t, u, v);
-  return f.w00 * texel_alpha(texturing, t, f.ix0, f.iy0) + f.w10 * texel_alpha(texturing, t, f.ix1, f.iy0) +
-         f.w01 * texel_alpha(texturing, t, f.ix0, f.iy1) + f.w11 * texel_alpha(texturing, t, f.ix1, f.iy1);
+  return f.w00 * texel_alpha(texturing, t, f.ix0, f.iy0, storages) + f.w10 * texel_alpha(texturing, t, f.ix1, f.iy0, storages) +
+         f.w01 * texel_alpha(texturing, t, f.ix0, f.iy1, storages) + f.w11 * texel_alpha(texturing, t, f.ix1, f.iy1, storages);
 }
 
 /* Channel `channel` (0 to 3) of an RGBA value, by bit tests. */
@@ -363,7 +376,7 @@ CLPT_INLINE Vec3 triangle_emission_scale(__global const uchar* texturing, uint t
       __global const GpuTriangleTexturing* r = triangle_texturing(texturing, triangle);
       float u, v;
       triangle_uv(r, (float)b0, (float)b1, (float)b2, &u, &v);
-      const TexelRgba c = texture_lookup(texturing, index, u, v);
+      const TexelRgba c = texture_lookup(texturing, index, u, v, CLPT_EMISSION_STORAGES);
       s = v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f));
     }
   }
@@ -389,7 +402,7 @@ CLPT_INLINE Vec3 normal_mapped(__global const uchar* texturing, uint triangle, u
   const real sign = b0 * tg->t0[3] + b1 * tg->t1[3] + b2 * tg->t2[3] < (real)0 ? (real)-1 : (real)1;
   const Vec3 t = v3_scale(along, (real)1 / clpt_sqrt(length2 > (real)0 ? length2 : (real)1));
   const Vec3 b = v3_scale(v3(n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x), sign);
-  const TexelRgba c = texture_lookup(texturing, index, u, v);
+  const TexelRgba c = texture_lookup(texturing, index, u, v, CLPT_NORMAL_STORAGES);
   const real x = (real)((2.0f * c.r - 1.0f) * scale), y = (real)((2.0f * c.g - 1.0f) * scale), z = (real)(2.0f * c.b - 1.0f);
   const Vec3 m = v3_add(v3_add(v3_scale(t, x), v3_scale(b, y)), v3_scale(n, z));
   const real m2 = v3_dot(m, m);
@@ -431,7 +444,7 @@ CLPT_INLINE Vec3 sphere_emission_scale(__global const uchar* texturing, int sphe
     if (index != CLPT_TEXTURE_NONE) {
       float u, v;
       sphere_uv(n, &u, &v);
-      const TexelRgba c = texture_lookup(texturing, index, u, v);
+      const TexelRgba c = texture_lookup(texturing, index, u, v, CLPT_EMISSION_STORAGES);
       s = v3(fmax(c.r, 0.0f), fmax(c.g, 0.0f), fmax(c.b, 0.0f));
     }
   }

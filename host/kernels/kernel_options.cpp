@@ -220,6 +220,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   f.alpha = textures.alpha;
   f.vertex_colors = textures.vertex_colors;
   f.texel_storages = textures.storages;
+  f.slot_storages = textures.slot_storages;
   f.texel_channels = textures.channel_counts;
   f.texture_wraps = textures.wraps;
   f.normal_maps = textures.normal_maps;
@@ -285,6 +286,34 @@ bool lockstep_pairs_segments(const KernelFeatures& features) {
          features.unroll_scene_loops && !features.has_hierarchy() && !features.triangles_in_loop();
 }
 
+// Each slot's storages (texture.cl): its own mask where it has images; where it has none its lookup
+// never runs, and the float storage alone (a typed read, no sRGB) is the least code to compile.
+// "base colour 8-bit, metallic-roughness half, ...": the slots with images, each its storages.
+static std::string slot_names(const KernelFeatures& features) {
+  const char* slots[kTextureSlots] = {"base colour", "metallic-roughness", "normal map", "emission"};
+  const char* storages[3] = {"8-bit", "half", "float"};
+  std::string out;
+  for (int i = 0; i < kTextureSlots; ++i) {
+    const uint32_t mask = features.slot_storages[size_t(i)] & features.texel_storages;
+    if (mask == 0) continue;
+    std::string these;
+    for (int b = 0; b < 3; ++b)
+      if (mask & (1u << b)) these += (these.empty() ? "" : "+") + std::string(storages[b]);
+    out += (out.empty() ? "" : ", ") + std::string(slots[i]) + " " + these;
+  }
+  return out.empty() ? "no slot" : out;
+}
+
+static std::string slot_storage_options(const KernelFeatures& features) {
+  const char* names[kTextureSlots] = {"BASE", "MR", "NORMAL", "EMISSION"};
+  std::string out;
+  for (int i = 0; i < kTextureSlots; ++i) {
+    const uint32_t mask = features.slot_storages[size_t(i)] & features.texel_storages;
+    out += std::string(" -DCLPT_") + names[i] + "_STORAGES=" + std::to_string(mask != 0 ? mask : 4u);
+  }
+  return out;
+}
+
 std::string kernel_build_options(const KernelFeatures& features) {
   std::ostringstream o;
   // OpenCL C 1.2: what PoCL compiles and every GPU driver accepts.
@@ -315,7 +344,8 @@ std::string kernel_build_options(const KernelFeatures& features) {
       o << " -DCLPT_HAS_TEXTURES=1 -DCLPT_TEXEL_STORAGES=" << features.texel_storages
         << " -DCLPT_TEXEL_CHANNELS=" << features.texel_channels << " -DCLPT_TEXTURE_WRAPS=" << features.texture_wraps
         << " -DCLPT_HAS_NORMAL_MAPS=" << (features.normal_maps ? 1 : 0)
-        << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0);
+        << " -DCLPT_HAS_EMISSION_TEXTURES=" << (features.emission_textures ? 1 : 0)
+        << slot_storage_options(features);
     if (features.textures && features.sphere_textures) o << " -DCLPT_HAS_SPHERE_TEXTURES=1";
     if (features.alpha) o << " -DCLPT_HAS_ALPHA=1";
     if (features.vertex_colors) o << " -DCLPT_HAS_VERTEX_COLORS=1";
@@ -441,8 +471,8 @@ std::string explain_kernel_options(const KernelFeatures& features) {
           : features.textures
               ? "compiled (a textured material on a " +
                     std::string(features.sphere_textures ? "mesh or sphere; spheres by the spherical mapping: " : "mesh: ") +
-                    names(features.texel_storages, {"8-bit", "half", "float"}) +
-                    " texels; " + names(features.texel_channels, {"1", "2", "3", "4"}) + " channel(s); " +
+                    names(features.texel_storages, {"8-bit", "half", "float"}) + " texels (" +
+                    slot_names(features) + "); " + names(features.texel_channels, {"1", "2", "3", "4"}) + " channel(s); " +
                     names(features.texture_wraps, {"repeat", "clamp", "mirror"}) + " wrap; normal maps " +
                     (features.normal_maps ? "compiled" : "left out") + "; emission textures " +
                     (features.emission_textures ? "compiled" : "left out") + ")"

@@ -2,6 +2,7 @@
 // compiled in and the exact build options. `clpt render --explain` prints its answer.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 #include "cl/cl_device.h"
 #include "scene/loop_spheres.h"
 #include "scene/precision_preset.h"
+#include "scene/device_textures.h"
 #include "scene/scene.h"
 
 namespace clpt {
@@ -148,6 +150,11 @@ struct KernelFeatures {
   // CLPT_HAS_EMISSION_TEXTURES.
   bool textures = true;
   uint32_t texel_storages = 7;
+  // Per material slot (TextureSlot: base colour and alpha, metallic-roughness, normal map,
+  // emission) the storages of the images that fill it, a subset of texel_storages, 0 where none
+  // does: CLPT_BASE_STORAGES, CLPT_MR_STORAGES, CLPT_NORMAL_STORAGES, CLPT_EMISSION_STORAGES, so
+  // that each lookup compiles its own slot's texel reads (kernels/texture.cl).
+  std::array<uint32_t, kTextureSlots> slot_storages{7, 7, 7, 7};
   uint32_t texel_channels = 15;
   uint32_t texture_wraps = 7;
   bool normal_maps = true;

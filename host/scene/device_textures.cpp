@@ -19,6 +19,12 @@ const TextureRef* refs_of(const MaterialTextures& t, int i) {
   return all[i];
 }
 
+// The slot whose lookup reads refs_of(t, i).
+TextureSlot slot_of_ref(int i) {
+  const TextureSlot slots[5] = {kBaseSlot, kMetalRoughSlot, kMetalRoughSlot, kEmissionSlot, kNormalSlot};
+  return slots[i];
+}
+
 size_t aligned(size_t n) { return (n + 15) & ~size_t(15); }
 
 template <typename T>
@@ -101,6 +107,7 @@ TextureUse texture_use(const Scene& scene) {
       const TextureImage& image = scene.images[size_t(r.image)];
       use.any = true;
       use.storages |= 1u << static_cast<uint32_t>(image.storage);
+      use.slot_storages[size_t(slot_of_ref(i))] |= 1u << static_cast<uint32_t>(image.storage);
       use.channel_counts |= 1u << (image.channels - 1);
       use.wraps |= 1u << static_cast<uint32_t>(r.wrap_u);
       use.wraps |= 1u << static_cast<uint32_t>(r.wrap_v);

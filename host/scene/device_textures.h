@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,12 +16,18 @@
 
 namespace clpt {
 
+// The material slots whose lookups the kernels compile apart (kernels/texture.cl): base colour
+// (and its alpha), metallic-roughness (metallic and roughness), normal map, emission.
+enum TextureSlot : int { kBaseSlot, kMetalRoughSlot, kNormalSlot, kEmissionSlot };
+inline constexpr int kTextureSlots = 4;
+
 // What the kernels compile for the scene's textures (kernel_options.cpp reads it): bit
 // (1 << CLPT_TEXEL_*) of each storage used, (1 << (channels - 1)) of each channel count,
 // (1 << CLPT_WRAP_*) of each wrap mode, and whether a material has a normal map.
 struct TextureUse {
   bool any = false;
   uint32_t storages = 0;
+  std::array<uint32_t, kTextureSlots> slot_storages{};  // the storages of each slot's images
   uint32_t channel_counts = 0;
   uint32_t wraps = 0;
   bool normal_maps = false;

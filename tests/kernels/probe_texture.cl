@@ -9,7 +9,7 @@
 __kernel void probe_texture(__global const uchar* texturing, __global const float4* in, __global float4* out) {
   const size_t i = get_global_id(0);
   const float4 q = in[i];
-  const TexelRgba c = texture_lookup(texturing, (uint)q.z, q.x, q.y);
+  const TexelRgba c = texture_lookup(texturing, (uint)q.z, q.x, q.y, CLPT_TEXEL_STORAGES);
   out[i] = (float4)(c.r, c.g, c.b, c.a);
 }
 
@@ -19,6 +19,8 @@ __kernel void probe_texture_channels(__global const uchar* texturing, __global c
   const size_t i = get_global_id(0);
   const float4 q = in[i];
   const uint t = (uint)q.z;
-  out[i] = (float4)(texture_lookup_channel(texturing, t, 0u, q.x, q.y), texture_lookup_channel(texturing, t, 1u, q.x, q.y),
-                    texture_lookup_channel(texturing, t, 2u, q.x, q.y), texture_lookup_channel(texturing, t, 3u, q.x, q.y));
+  out[i] = (float4)(texture_lookup_channel(texturing, t, 0u, q.x, q.y, CLPT_TEXEL_STORAGES),
+                    texture_lookup_channel(texturing, t, 1u, q.x, q.y, CLPT_TEXEL_STORAGES),
+                    texture_lookup_channel(texturing, t, 2u, q.x, q.y, CLPT_TEXEL_STORAGES),
+                    texture_lookup_channel(texturing, t, 3u, q.x, q.y, CLPT_TEXEL_STORAGES));
 }
