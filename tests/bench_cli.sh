@@ -116,7 +116,8 @@ test "$(grep -c "traversal: SAH cost" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$
 
 # --traversal-anchor: an unknown anchor is refused; embree, in a build with Embree, times
 # rtcIntersect1 and rtcIntersect16 on the mesh rows' triangles and rays (hits as the replica's
-# sample: the Cornell box's camera rays all hit), and a build without it says so (exit 2).
+# sample: the Cornell box's camera rays all hit) and clpt's own queries on them (trace.cl), and a
+# build without it says so (exit 2).
 status=0
 "$clpt" bench --traversal-anchor nosuch --devices cpu > /dev/null 2> "$work/anchor.err" || status=$?
 test "$status" -eq 2 || { echo "FAIL: --traversal-anchor nosuch exited $status, not 2"; exit 1; }
@@ -137,8 +138,13 @@ assert a["name"].startswith("embree ") and a["threads"] >= 1, a
 assert a["rays"] == mesh["traversal"]["rays"] and a["hits"] >= 200, a
 assert a["rtcIntersect1_rays_per_s"] > 0 and a["rtcIntersect16_rays_per_s"] > 0, a
 assert a["rtcIntersect1_rays_per_cpu_s"] > 0 and a["rtcIntersect16_rays_per_cpu_s"] > 0, a
+# clpt's own queries on the same rays (kernels/trace.cl): the same rays, about the same hits.
+t = mesh["trace"]
+assert t["rays"] == a["rays"] and abs(t["hits"] - a["hits"]) <= 0.02 * a["rays"] + 1, (t, a)
+assert t["rays_per_s"] > 0 and t["rays_per_cpu_s"] > 0 and t["launch_rays"] >= t["rays"], t
 PY
   grep -q "anchor: clpt .* rtcIntersect1 .* rtcIntersect16" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
+  grep -q "traversal alone: clpt (trace.cl" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
 else
   test "$status" -eq 2 && grep -q "built without Embree" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
   echo "bench CLI: no Embree in this build: the anchor's timing is not checked"

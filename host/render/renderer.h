@@ -46,6 +46,17 @@ class Renderer {
 
   double build_seconds() const { return build_seconds_; }
 
+  // The scene's buffers (also for tools that run a kernel of their own on a scene, e.g.
+  // tools/traversal_trace.h), in the kernels' argument order (kernels/bvh.cl, SceneBuffers). None is
+  // ever empty (OpenCL has no zero-sized buffers): an unused one holds a zeroed placeholder entry;
+  // GpuRenderParams' counts say how many entries count.
+  struct SceneBufferSet {
+    Buffer spheres, lights, nodes, triangles, triangle_shading, environment, texturing;
+  };
+  static SceneBufferSet upload_scene(DeviceContext& ctx, const DeviceScene& scene);
+  // Sets the seven scene buffers as arguments first, first + 1, ...; returns the next index.
+  static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
+
  protected:
   // Builds the program of `entry_file` (e.g. "megakernel.cl") specialised for `features`,
   // recording the build time (driver and clpt caches included). The options are the plan's
@@ -55,16 +66,6 @@ class Renderer {
   // vectoriser compiles it with: those of the features it was built with, which its build options
   // carry too (cl/pocl_vectoriser.h).
   Kernel entry_point(const DeviceContext& ctx, const ProgramHandle& program, const char* name) const;
-
-  // The scene's buffers, in the kernels' argument order (kernels/bvh.cl, SceneBuffers). None is
-  // ever empty (OpenCL has no zero-sized buffers): an unused one holds a zeroed placeholder entry;
-  // GpuRenderParams' counts say how many entries count.
-  struct SceneBufferSet {
-    Buffer spheres, lights, nodes, triangles, triangle_shading, environment, texturing;
-  };
-  static SceneBufferSet upload_scene(DeviceContext& ctx, const DeviceScene& scene);
-  // Sets the seven scene buffers as arguments first, first + 1, ...; returns the next index.
-  static cl_uint bind_scene(Kernel& kernel, cl_uint first, const SceneBufferSet& scene);
 
   // The launch's slot buffer: `slots` (params.pixel_count of them) written to the device for an
   // adaptive launch; for a uniform one a placeholder entry the kernels never read.

@@ -15,6 +15,7 @@
 #include "scene/bvh_builders.h"
 #include "scene/scene.h"
 #include "tools/traversal_anchor.h"
+#include "tools/traversal_trace.h"
 #include "tools/vector_width.h"
 
 namespace clpt {
@@ -97,6 +98,9 @@ struct BenchRow {
   // clpt's closest-hit rays/s: its segments/s (every segment of a path is one closest-hit query;
   // shading, shadow rays and the loop's spheres share the time), the figure set beside the anchor's.
   std::optional<AnchorRates> anchor;  // --traversal-anchor, rows with triangles
+  // --traversal-anchor, rows with triangles: clpt's own closest-hit queries on the anchor's rays and
+  // triangles (kernels/trace.cl with the row's kernel options; tools/traversal_trace.h).
+  std::optional<TraceRates> trace;
   // Paths per CPU-second of this process (process_cpu_seconds over each timed pass): on a CPU
   // device the figure that holds while other work shares the cores; on a GPU, host time only.
   Spread paths_per_cpu_s;

@@ -22,8 +22,8 @@ void check_traversal_anchor(const std::string& name, const std::string& option);
 // Embree's closest-hit rates on `triangles` (the device scene's, camera-relative float, as the
 // kernels intersect them) for the rays of `sample` (their origins and directions in float, from
 // t = 0): rtcIntersect1 one ray per call, and rtcIntersect16 on packets of 16 consecutive rays of
-// the sample; each timed over whole passes of the sample, repeated until min_seconds have passed,
-// on `threads` threads (each its own slice of the sample). The scene is built once
+// the sample; on `threads` threads, each passing over its own slice of the sample again and again
+// until min_seconds have passed. The scene is built once
 // (RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH: Embree's best hierarchy for tracing), not timed.
 struct AnchorRates {
   std::string name;            // "embree 3.13.5"
