@@ -189,18 +189,27 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
     if (open) {
       __global const GpuBvhNode* n = &scene->nodes[node];
       const real4 t = bvh_node_entries(n, &box, hit->t);
-      real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
-      uint s0 = 0u, s1 = 1u, s2 = 2u, s3 = 3u;
-      bvh_order(&t0, &s0, &t1, &s1);
-      bvh_order(&t2, &s2, &t3, &s3);
-      bvh_order(&t0, &s0, &t2, &s2);
-      bvh_order(&t1, &s1, &t3, &s3);
-      bvh_order(&t1, &s1, &t2, &s2);
-      const uint base = node << 2;
-      if (t3 < CLPT_NO_HIT) stack[depth++] = base | s3;
-      if (t2 < CLPT_NO_HIT) stack[depth++] = base | s2;
-      if (t1 < CLPT_NO_HIT) stack[depth++] = base | s1;
-      if (t0 < CLPT_NO_HIT) {
+      /* The hit children counted, not as bits of a mask: LLVM turns a mask's one-bit test into
+       * llvm.ctpop, which Oclgrind cannot run. */
+      const bool h0 = t.s0 < CLPT_NO_HIT, h1 = t.s1 < CLPT_NO_HIT, h2 = t.s2 < CLPT_NO_HIT, h3 = t.s3 < CLPT_NO_HIT;
+      const uint hits = (uint)h0 + (uint)h1 + (uint)h2 + (uint)h3;
+      uint s0 = 0u;
+      if (hits > 1u) {
+        real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
+        uint s1 = 1u, s2 = 2u, s3 = 3u;
+        bvh_order(&t0, &s0, &t1, &s1);
+        bvh_order(&t2, &s2, &t3, &s3);
+        bvh_order(&t0, &s0, &t2, &s2);
+        bvh_order(&t1, &s1, &t3, &s3);
+        bvh_order(&t1, &s1, &t2, &s2);
+        const uint base = node << 2;
+        if (t3 < CLPT_NO_HIT) stack[depth++] = base | s3;
+        if (t2 < CLPT_NO_HIT) stack[depth++] = base | s2;
+        stack[depth++] = base | s1;
+      } else {
+        s0 = h0 ? 0u : (h1 ? 1u : (h2 ? 2u : 3u));
+      }
+      if (hits != 0u) {
         count = n->count[s0];
         first = n->child[s0];
         leaf = count != 0u;
