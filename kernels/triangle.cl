@@ -31,7 +31,6 @@ typedef struct ShearedRay {
   int kx, ky, kz;    /* the permutation: kz is the largest |d| component */
   real sx, sy, sz;   /* shear -d_kx/d_kz, -d_ky/d_kz and the scale 1/d_kz */
   Vec3 origin;
-  real okx, oky, okz; /* the origin's components kx, ky, kz (triangle_test's indexed reads) */
   CLPT_ABI_PAD(int, 1)
 } ShearedRay;
 
@@ -63,9 +62,6 @@ CLPT_INLINE ShearedRay sheared_ray(Vec3 o, Vec3 d) {
   r.sy = v3_component(d, ky) / dz;
   r.sz = (real)1 / dz;
   r.origin = o;
-  r.okx = v3_component(o, kx);
-  r.oky = v3_component(o, ky);
-  r.okz = v3_component(o, kz);
   return r;
 }
 
@@ -100,25 +96,8 @@ CLPT_INLINE TriangleTest triangle_test_of(const ShearedRay* ray, Vec3 v0, Vec3 v
   return r;
 }
 
-/* The same test, reading each vertex's components kx, ky, kz by index instead of picking them from
- * all three by selects: the same operations on the same values, so the same bits, for a third of
- * the instructions where a triangle is tested alone (the hierarchy's leaves). The triangle loop
- * (triangle_loop.cl), vectorised across paths, keeps triangle_test_of: an index that differs per
- * path would make each read a gather there. */
 CLPT_INLINE TriangleTest triangle_test(const ShearedRay* ray, __global const GpuTriangle* tri) {
-#pragma OPENCL FP_CONTRACT OFF
-  const real az = (real)tri->v0[ray->kz] - ray->okz, bz = (real)tri->v1[ray->kz] - ray->okz,
-             cz = (real)tri->v2[ray->kz] - ray->okz;
-  const real ax = ((real)tri->v0[ray->kx] - ray->okx) - ray->sx * az, ay = ((real)tri->v0[ray->ky] - ray->oky) - ray->sy * az;
-  const real bx = ((real)tri->v1[ray->kx] - ray->okx) - ray->sx * bz, by = ((real)tri->v1[ray->ky] - ray->oky) - ray->sy * bz;
-  const real cx = ((real)tri->v2[ray->kx] - ray->okx) - ray->sx * cz, cy = ((real)tri->v2[ray->ky] - ray->oky) - ray->sy * cz;
-  TriangleTest r;
-  r.u = cx * by - cy * bx;
-  r.v = ax * cy - ay * cx;
-  r.w = bx * ay - by * ax;
-  r.det = r.u + r.v + r.w;
-  r.t_scaled = (r.u * az + r.v * bz + r.w * cz) * ray->sz;
-  return r;
+  return triangle_test_of(ray, v3_load_global(tri->v0), v3_load_global(tri->v1), v3_load_global(tri->v2));
 }
 
 /* Distance along the ray when test r is a hit at t in (0, t_max), else CLPT_NO_HIT. */
@@ -174,8 +153,7 @@ CLPT_INLINE TriangleSurface triangle_point(__global const GpuTriangle* tri, real
 CLPT_INLINE TriangleSurface triangle_surface(Vec3 o, Vec3 d, __global const GpuTriangle* tri,
                                              __global const GpuTriangleShading* shading) {
   const ShearedRay ray = sheared_ray(o, d);
-  /* By selects, not triangle_test's indexed reads: shading runs vectorised across paths. */
-  const TriangleTest r = triangle_test_of(&ray, v3_load_global(tri->v0), v3_load_global(tri->v1), v3_load_global(tri->v2));
+  const TriangleTest r = triangle_test(&ray, tri);
   const real inv = r.det != (real)0 ? (real)1 / r.det : (real)0;
   const real b0 = r.u * inv, b1 = r.v * inv, b2 = r.w * inv;
   TriangleSurface s = triangle_point(tri, b0, b1, b2);
