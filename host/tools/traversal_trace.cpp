@@ -28,7 +28,7 @@ TraceRates time_clpt_trace(const DeviceInfo& device, const KernelFeatures& featu
   const size_t copies = std::max<size_t>(1, limit / n);
   const size_t count = copies * n;
   out.launch_rays = count;
-  std::vector<cl_float4> rays(2 * count);
+  std::vector<cl_float4> rays(2 * count);  // per ray: origin, 0, direction, 0 (trace.cl reads 8 floats)
   for (size_t i = 0; i < count; ++i) {
     const StatsRay& r = sample.rays[i % n];
     rays[2 * i] = {{float(r.origin[0]), float(r.origin[1]), float(r.origin[2]), 0.f}};
