@@ -159,8 +159,8 @@ CLPT_INLINE void bvh_order(real* ta, uint* sa, real* tb, uint* sb) {
  * none) neither, in kernels with triangle lights. With CLPT_HAS_ALPHA, a triangle hit where its
  * material's alpha cuts the surface away (alpha.cl, seed `alpha_seed`) is no hit.
  *
- * At a node, the four child boxes are tested at once (bvh_node_entries); the hit children are
- * sorted by entry distance (a 5-comparator network), the nearest visited (an interior child is
+ * At a node, the four child boxes are tested at once (bvh_node_entries); a single hit child is
+ * visited at once, several are sorted by entry distance (a 5-comparator network), the nearest visited (an interior child is
  * opened next, a leaf's primitives tested), the others pushed farthest first, so that they come
  * off the stack nearest first. A stack entry names a child slot (node << 2 | slot); popped, its
  * box is tested again against the hit->t found since it was pushed, and it is skipped when wholly
