@@ -8,12 +8,14 @@
 # On a GPU machine without a package registry (x86-64, the GPU vendor's OpenCL driver, g++ and
 # CMake present), from a bundle made by scripts/offline-bundle.sh on a Debian 12 machine: builds
 # clpt's render core against the bundle's unpacked packages (no OpenImageIO, no MPI, no tests) and
-# writes to OUTDIR, within about 8 minutes on one GPU, seven small files:
+# writes to OUTDIR, within about 8 minutes on one GPU, eight small files:
 #   OUTDIR/summary.md     one page: machine, devices, verify's verdict, the bench table, the
 #                         kernels' registers and spills, the first picture, each step's time
 #   report.log            everything the steps printed (devices, build, verify, bench, render)
 #   verify.json           `clpt verify` of every GPU against the bundle's PoCL films
 #   bench.json            `clpt bench`: the book's scenes and the mesh scenes, both forms, every preset
+#   traversal.json        `clpt bench --traversal-alone`: the mesh scenes' closest-hit queries alone
+#                         (kernels/trace.cl, no shading), rays/s and hits per device
 #   kernel-budget.tsv     `clpt kernels budget`: the driver's own figures per kernel of every
 #                         covering variant (registers and spills where it reports them: NVIDIA)
 #   first-picture.pfm     the README's first picture (scripts/render.sh's render) as a raw film,
@@ -40,15 +42,19 @@ done
 # book's scenes in 10-20 ms, too short a run to time well: docs/performance.md, "GPUs") and the
 # first picture as scripts/render.sh renders it; --quick, tiny sizes.
 scenes=scenes/diffuse.toml,scenes/specular.toml,scenes/glass.toml,scenes/cornell-box.toml,scenes/torus-knot.toml
+mesh_scenes=scenes/cornell-box.toml,scenes/torus-knot.toml
 precisions=fast,robust,double
 bench_size=(--width 640 --height 480 --spp 256 --warmup 1 --repeat 3)
+traversal_size=(--width 640 --height 480)
 picture_size=()
 # Each step's time limit, in seconds: within 8 minutes together on a GPU machine (whose build runs
 # on many cores); --quick runs on a small CPU machine, whose build alone takes minutes.
-limits=(devices=60 build=150 verify=90 bench=180 picture=30 budget=30)
+limits=(devices=60 build=150 verify=90 bench=180 traversal=30 picture=30 budget=30)
 if [[ $quick -eq 1 ]]; then
-  limits=(devices=60 build=900 verify=300 bench=300 picture=120 budget=120)
+  limits=(devices=60 build=900 verify=300 bench=300 traversal=120 picture=120 budget=120)
   scenes=scenes/diffuse.toml,scenes/cornell-box.toml
+  mesh_scenes=scenes/cornell-box.toml
+  traversal_size=(--width 32 --height 24)
   precisions=robust
   bench_size=(--width 32 --height 24 --spp 1 --warmup 0 --repeat 1)
   picture_size=(--width 32 --height 24 --spp 4)
@@ -121,6 +127,11 @@ write_summary() {
     echo '```'
     sed -n '/^== bench: /,/^== bench: exit/p' "$log" | grep -vE '^(== |    |bench: )' | head -80
     echo '```'
+    echo "## Traversal alone ($mesh_scenes; kernels/trace.cl, closest-hit queries without shading)"
+    echo '```'
+    sed -n '/^== traversal: /,/^== traversal: exit/p' "$log" |
+      awk '/^scenes\// {print $1, $2, $3; next} /traversal alone:/ {print}' | cut -c1-150 | head -20
+    echo '```'
     echo "## Kernels: the driver's own figures (kernel-budget.tsv)"
     if [[ -s "$out/kernel-budget.tsv" ]]; then
       awk -F'\t' 'NR > 1 {n++; if ($4 != "" && $4 + 0 > reg) {reg = $4 + 0; regk = $1 " " $2}
@@ -183,6 +194,10 @@ step verify "$clpt" verify --device "$devices" --reference films --reference-dir
   --json "$out/verify.json"
 step bench "$clpt" bench --devices "$devices" --scenes "$scenes" --forms megakernel,wavefront \
   --precisions "$precisions" "${bench_size[@]}" --json "$out/bench.json"
+# The traversal alone on the mesh scenes (a hierarchy on GPUs; docs/performance.md, "Traversal"):
+# one tiny render per row, then 0.5 s of closest-hit queries on the statistics' rays.
+step traversal "$clpt" bench --devices "$devices" --scenes "$mesh_scenes" --forms megakernel --precisions robust \
+  --traversal-alone --no-vector-width "${traversal_size[@]}" --spp 1 --warmup 0 --repeat 1 --json "$out/traversal.json"
 # scripts/render.sh's render of the default scene (README's first picture), as a raw film.
 step picture "$clpt" render scenes/diffuse.toml --device "$first" --estimator nee --sampler sobol \
   --target-error 0.1 "${picture_size[@]}" -o "$out/first-picture.pfm"

@@ -149,4 +149,18 @@ else
   test "$status" -eq 2 && grep -q "built without Embree" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
   echo "bench CLI: no Embree in this build: the anchor's timing is not checked"
 fi
-echo "bench CLI: table, JSON fields, vector widths, baseline pass and regression, hierarchy builders, statistics and anchor all as expected"
+# --traversal-alone (no Embree needed): the mesh row also times clpt's own closest-hit queries on its
+# statistics' rays (kernels/trace.cl); a row without triangles does not.
+"$clpt" bench --no-vector-width --traversal-alone --scenes scenes/cornell-box.toml,scenes/diffuse.toml --width 16 \
+    --height 16 --spp 1 --warmup 0 --repeat 1 --devices cpu --forms megakernel --json "$work/alone.json" > "$work/alone.txt"
+python3 - "$work/alone.json" <<'PY'
+import json, sys
+mesh, spheres = json.load(open(sys.argv[1]))["rows"]
+assert "trace" not in spheres and "anchor" not in mesh, (mesh, spheres)
+t = mesh["trace"]
+# 16 x 16 camera rays and a bounce from each hit; the box is closed but for its front, so most hit.
+assert t["rays"] == mesh["traversal"]["rays"] and t["rays"] // 2 < t["hits"] <= t["rays"], t
+assert t["rays_per_s"] > 0 and t["rays_per_cpu_s"] > 0 and t["launch_rays"] >= t["rays"], t
+PY
+grep -q "traversal alone: clpt (trace.cl, the row's options) .* rays hit$" "$work/alone.txt" || { cat "$work/alone.txt"; exit 1; }
+echo "bench CLI: table, JSON fields, vector widths, baseline pass and regression, hierarchy builders, statistics, anchor and traversal alone all as expected"

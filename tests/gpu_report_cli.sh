@@ -47,14 +47,15 @@ env "${launcher[@]}" CLPT_REPORT_WORK="$work/report-work" "$src/scripts/gpu-repo
 status=$?
 [[ $status -eq 0 ]] || { fail "(b) gpu-report.sh exited $status"; show report.out; [[ -f out/report.log ]] && tail -40 out/report.log | show; }
 expected="out/bench.json out/first-picture.pfm out/first-picture.var.pfm out/kernel-budget.tsv out/report.log"
-expected+=" out/summary.md out/verify.json"
+expected+=" out/summary.md out/traversal.json out/verify.json"
 [[ "$(ls -d out/* 2>/dev/null | xargs)" == "$expected" ]] || fail "(b) files: $(ls -d out/* | xargs), expected $expected"
 for f in out/*; do
   [[ $(stat -c %s "$f") -lt 16000000 ]] || fail "(b) $f is 16 MB or more"
 done
 grep -q "^verify: 2 of 2 rows passed$" out/summary.md || { fail "(b) the summary has no passing verify"; show out/summary.md; }
+grep -q "traversal alone: clpt (trace.cl" out/summary.md || { fail "(b) the summary has no traversal line"; show out/summary.md; }
 grep -q "^Failed steps: none$" out/summary.md || { fail "(b) a step failed"; show out/summary.md; }
-for s in build devices verify bench picture budget; do
+for s in build devices verify bench traversal picture budget; do
   grep -qE "^\| $s \| [0-9.]+ s \| ok \|$" out/summary.md || fail "(b) the summary's steps table has no ok row for $s"
 done
 python3 - out <<'PY' || fail "(b) the report's JSON, table or film"
@@ -68,6 +69,9 @@ cells = {(r["scene"], r["form"]) for r in b["rows"]}
 assert cells == {(s, f) for s in ("scenes/diffuse.toml", "scenes/cornell-box.toml")
                  for f in ("megakernel", "wavefront")}, cells
 assert all(r["paths_per_s"]["median"] > 0 for r in b["rows"]), b["rows"]
+t = json.load(open(os.path.join(out, "traversal.json")))["rows"]
+assert [r["scene"] for r in t] == ["scenes/cornell-box.toml"], t
+assert t[0]["trace"]["hits"] > 0 and t[0]["trace"]["rays_per_s"] > 0, t
 rows = [l.split("\t") for l in open(os.path.join(out, "kernel-budget.tsv")).read().splitlines()]
 assert rows[0][:3] == ["variant", "kernel", "build_s"] and len(rows) > 10, rows[:3]
 assert all(len(r) == len(rows[0]) for r in rows), "ragged table"

@@ -25,7 +25,7 @@ struct BenchOptions {
   std::string sphere_reads = "auto";
   std::string json, baseline, traversal_anchor;
   double tolerance = 10;
-  bool no_vector_width = false;
+  bool no_vector_width = false, traversal_alone = false;
 };
 
 int run(BenchConfig config, const BenchOptions& o) {
@@ -53,6 +53,7 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.measure_vector_width = !o.no_vector_width;
   if (!o.traversal_anchor.empty()) check_traversal_anchor(o.traversal_anchor, "--traversal-anchor");
   config.traversal_anchor = o.traversal_anchor;
+  config.traversal_alone = o.traversal_alone || !o.traversal_anchor.empty();
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
   std::printf("%s", bench_table(rows).c_str());
@@ -112,7 +113,10 @@ std::function<int()> add_bench_command(CLI::App& app) {
   cmd->add_option("--traversal-anchor", o->traversal_anchor,
                   "embree: every row with triangles also times Embree's rtcIntersect1 and rtcIntersect16 on the "
                   "same triangles and rays as its traversal statistics (only in a build with Embree; "
-                  "docs/performance.md \"Traversal\")");
+                  "docs/performance.md \"Traversal\"); implies --traversal-alone");
+  cmd->add_flag("--traversal-alone", o->traversal_alone,
+                "Every row with triangles also times clpt's closest-hit queries alone (kernels/trace.cl with the "
+                "row's options, no shading) on the rays of its traversal statistics: rays/s, per CPU-second, hits");
   cmd->add_flag("--no-vector-width", o->no_vector_width,
                 "Do not measure each row's vector width (one extra small cold compile per row; the lanes "
                 "column and the JSON's vector_width then say not measured)");

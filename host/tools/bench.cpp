@@ -102,10 +102,10 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
     row.triangles_per_ray = counts.per_ray(counts.triangles);
     row.spheres_per_ray = counts.per_ray(counts.hierarchy_spheres);
   }
-  if (!c.traversal_anchor.empty() && row.triangles > 0) {
+  if (!c.traversal_anchor.empty() && row.triangles > 0)
     row.anchor = time_embree_anchor(ds.triangles, sample, int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
+  if (c.traversal_alone && row.triangles > 0)
     row.trace = time_clpt_trace(device, planned.features, ds, make_params(scene, ds), sample, 0.5);
-  }
   if (row.triangles > 0)
     row.device_bytes_per_triangle =
         double(row.triangles * (sizeof(GpuTriangle) + sizeof(GpuTriangleShading)) + row.bvh_nodes * sizeof(GpuBvhNode)) /
@@ -353,17 +353,22 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
                     a.single_per_cpu_s > 0 ? clpt_cpu / a.single_per_cpu_s : 0.0);
       o << line;
     }
-    if (r.trace && r.anchor) {
+    if (r.trace) {
       const TraceRates& t = *r.trace;
-      const AnchorRates& a = *r.anchor;
       std::snprintf(line, sizeof line,
                     "    traversal alone: clpt (trace.cl, the row's options) %.2f M rays/s, %.2f M/CPU-s, %llu of %llu "
-                    "rays hit (embree %llu); clpt/rtcIntersect1 %.3f (per CPU-s %.3f)\n",
+                    "rays hit",
                     t.per_s * 1e-6, t.per_cpu_s * 1e-6, static_cast<unsigned long long>(t.hits),
-                    static_cast<unsigned long long>(t.rays), static_cast<unsigned long long>(a.hits),
-                    a.single_per_s > 0 ? t.per_s / a.single_per_s : 0.0,
-                    a.single_per_cpu_s > 0 ? t.per_cpu_s / a.single_per_cpu_s : 0.0);
+                    static_cast<unsigned long long>(t.rays));
       o << line;
+      if (r.anchor) {
+        const AnchorRates& a = *r.anchor;
+        std::snprintf(line, sizeof line, " (embree %llu); clpt/rtcIntersect1 %.3f (per CPU-s %.3f)",
+                      static_cast<unsigned long long>(a.hits), a.single_per_s > 0 ? t.per_s / a.single_per_s : 0.0,
+                      a.single_per_cpu_s > 0 ? t.per_cpu_s / a.single_per_cpu_s : 0.0);
+        o << line;
+      }
+      o << "\n";
     }
     for (const RankRate& k : r.ranks) {
       std::snprintf(line, sizeof line, "    on %d MPI rank%s: M paths/s %s, efficiency %.0f%%\n", k.ranks,

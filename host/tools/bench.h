@@ -53,6 +53,9 @@ struct BenchConfig {
   // --traversal-anchor: "" (none) or "embree": every row with triangles also times Embree's
   // closest-hit queries on its triangles and the statistics' rays (tools/traversal_anchor.h).
   std::string traversal_anchor;
+  // --traversal-alone (and --traversal-anchor): every row with triangles also times clpt's own
+  // closest-hit queries on the statistics' rays (kernels/trace.cl; tools/traversal_trace.h).
+  bool traversal_alone = false;
 };
 
 struct Spread {
@@ -98,8 +101,9 @@ struct BenchRow {
   // clpt's closest-hit rays/s: its segments/s (every segment of a path is one closest-hit query;
   // shading, shadow rays and the loop's spheres share the time), the figure set beside the anchor's.
   std::optional<AnchorRates> anchor;  // --traversal-anchor, rows with triangles
-  // --traversal-anchor, rows with triangles: clpt's own closest-hit queries on the anchor's rays and
-  // triangles (kernels/trace.cl with the row's kernel options; tools/traversal_trace.h).
+  // --traversal-alone or --traversal-anchor, rows with triangles: clpt's own closest-hit queries on
+  // the statistics' rays and the row's triangles (kernels/trace.cl with the row's kernel options;
+  // tools/traversal_trace.h).
   std::optional<TraceRates> trace;
   // Paths per CPU-second of this process (process_cpu_seconds over each timed pass): on a CPU
   // device the figure that holds while other work shares the cores; on a GPU, host time only.

@@ -22,9 +22,10 @@ TraceRates time_clpt_trace(const DeviceInfo& device, const KernelFeatures& featu
   Kernel kernel(program.get(), "trace_hierarchy", ctx.where(), features.cpu_vector_lanes, !features.triangles_in_loop());
   const Renderer::SceneBufferSet scene = Renderer::upload_scene(ctx, ds);
 
-  // The sample repeated to about 64k rays a launch, within the device's one-compile launch size.
+  // The sample repeated to about 64k rays a launch on PoCL (within its one-compile launch size,
+  // DeviceInfo::uniform_launch_limit), about a million elsewhere (a GPU needs that many to fill).
   const size_t n = sample.rays.size();
-  const size_t limit = std::min<size_t>(65536, device.uniform_launch_limit());
+  const size_t limit = device.uniform_launch_limit() ? std::min<size_t>(65536, device.uniform_launch_limit()) : 1u << 20;
   const size_t copies = std::max<size_t>(1, limit / n);
   const size_t count = copies * n;
   out.launch_rays = count;

@@ -1,4 +1,5 @@
-// clpt's own closest-hit rate on the traversal anchor's rays (`clpt bench --traversal-anchor`):
+// clpt's own closest-hit rate on the traversal statistics' rays (`clpt bench --traversal-alone`, and
+// beside Embree's with `--traversal-anchor`):
 // kernels/trace.cl, built with a bench row's kernel options, queries the row's triangles alone
 // (the triangle loop or the hierarchy, as the row's render does) for the rays of the statistics'
 // sample, so that its rays/s compares with Embree's rtcIntersect1 on the same queries
@@ -18,8 +19,8 @@ namespace clpt {
 struct TraceRates {
   uint64_t rays = 0;       // per pass: the sample's rays
   uint64_t hits = 0;       // of one pass (beside the anchor's, a check that both answer alike)
-  uint64_t launch_rays = 0;  // rays per launch: the sample repeated (a launch of 4240 rays is
-                             // mostly launch overhead on a CPU device)
+  uint64_t launch_rays = 0;  // rays per launch: the sample repeated, to about 64k on PoCL and 1 M
+                             // elsewhere (a launch of 4240 rays is mostly launch overhead)
   double per_s = 0;        // rays/s over whole launches (wall time on the host)
   double per_cpu_s = 0;    // rays per CPU-second of this process (PoCL's threads are in it)
 };
