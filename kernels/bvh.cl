@@ -152,6 +152,77 @@ CLPT_INLINE void bvh_order(real* ta, uint* sa, real* tb, uint* sb) {
   *sb = swap ? s : *sb;
 }
 
+/* CLPT_WIDE_LEAF_TEST (kernel_options.h, wide_leaf_test): 1, a leaf block's four triangles tested
+ * in one vector test (PoCL's CPU device: triangle_block_distances); 0, one at a time from the same
+ * block (elsewhere: a GPU's lanes are rays already, and the vector test cost it a third more
+ * registers in the traversing kernels, docs/performance.md). */
+#ifndef CLPT_WIDE_LEAF_TEST
+#define CLPT_WIDE_LEAF_TEST 1
+#endif
+
+#if CLPT_HAS_TRIANGLES && CLPT_WIDE_LEAF_TEST
+/* The watertight test (triangle.cl: triangle_test_of, then triangle_test_distance) on the four
+ * triangles of a leaf block (GpuTriangleBlock, types.h) at once: for each lane the same operations
+ * in the same order, so the same distances bit for bit as the triangles tested one by one. The
+ * ray's permutation (kx, ky, kz) picks the stored axis each coordinate of the sheared frame reads:
+ * an address, where one triangle's test takes a select per coordinate. CLPT_NO_HIT in a lane
+ * missed, or hit outside (0, t_max). */
+CLPT_INLINE real4 triangle_block_distances(const ShearedRay* ray, __global const GpuTriangleBlock* blk, real t_max) {
+#pragma OPENCL FP_CONTRACT OFF
+  const real4 okx = (real4)(v3_component(ray->origin, ray->kx));
+  const real4 oky = (real4)(v3_component(ray->origin, ray->ky));
+  const real4 okz = (real4)(v3_component(ray->origin, ray->kz));
+  const real4 az = bvh_load4(blk->v[0][ray->kz]) - okz;
+  const real4 bz = bvh_load4(blk->v[1][ray->kz]) - okz;
+  const real4 cz = bvh_load4(blk->v[2][ray->kz]) - okz;
+  const real4 ax = (bvh_load4(blk->v[0][ray->kx]) - okx) - ray->sx * az;
+  const real4 ay = (bvh_load4(blk->v[0][ray->ky]) - oky) - ray->sy * az;
+  const real4 bx = (bvh_load4(blk->v[1][ray->kx]) - okx) - ray->sx * bz;
+  const real4 by = (bvh_load4(blk->v[1][ray->ky]) - oky) - ray->sy * bz;
+  const real4 cx = (bvh_load4(blk->v[2][ray->kx]) - okx) - ray->sx * cz;
+  const real4 cy = (bvh_load4(blk->v[2][ray->ky]) - oky) - ray->sy * cz;
+  const real4 u = cx * by - cy * bx;
+  const real4 v = ax * cy - ay * cx;
+  const real4 w = bx * ay - by * ax;
+  const real4 det = u + v + w;
+  const real4 t_scaled = (u * az + v * bz + w * cz) * ray->sz;
+  const real4 zero = (real4)((real)0);
+  const real4_mask mixed = ((u < zero) | (v < zero) | (w < zero)) & ((u > zero) | (v > zero) | (w > zero));
+  const real4 t = t_scaled / det;
+  const real4_mask hit = (mixed == (real4_mask)(0)) & (det != zero) & (t > zero) & (t < (real4)(t_max));
+  return hit ? t : (real4)(CLPT_NO_HIT);
+}
+#endif
+
+#if CLPT_HAS_TRIANGLES
+
+/* Triangle i (the triangle buffer's index) at distance t (CLPT_NO_HIT: missed) made the closest hit
+ * when it is nearer than hit->t and not triangle `skip_triangle` (a kernel with triangle lights),
+ * nor cut away by its material's alpha (CLPT_HAS_ALPHA): one lane of a leaf block. */
+CLPT_INLINE void bvh_triangle_lane(const SceneBuffers* scene, const ShearedRay* ray, real t, uint i,
+                                   int skip_triangle, uint alpha_seed, Hit* hit) {
+#if !CLPT_HAS_ALPHA
+  (void)scene;
+  (void)ray;
+  (void)alpha_seed;
+#endif
+#if CLPT_HAS_TRIANGLE_LIGHTS
+  bool closer = t < hit->t && (int)i != skip_triangle;
+#else
+  (void)skip_triangle;
+  bool closer = t < hit->t;
+#endif
+#if CLPT_HAS_ALPHA
+  /* The test again, for the barycentrics: a lane past the block's count never gets here (t is
+   * CLPT_NO_HIT), so i is a triangle. */
+  if (closer) closer = !alpha_cut(scene->texturing, i, triangle_test(ray, &scene->triangles[i]), alpha_seed);
+#endif
+  hit->t = closer ? t : hit->t;
+  hit->sphere = closer ? -1 : hit->sphere;
+  hit->triangle = closer ? (int)i : hit->triangle;
+}
+#endif
+
 /* Walks the hierarchy for the closest hit before hit->t (any_hit: stops at the first hit, for a
  * shadow ray whose hit->t is the distance to the light). Spheres keep intersect.cl's contract:
  * t > t_min, and sphere `skip` (the one the ray leaves on its outer side) is never hit; triangle
@@ -245,24 +316,25 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
         }
       } else {
 #if CLPT_HAS_TRIANGLES
-        for (uint i = first; i < first + n_prims; ++i) {
-#if CLPT_HAS_ALPHA
-          const TriangleTest test = triangle_test(&ray, &scene->triangles[i]);
-          const real t = triangle_test_distance(test, hit->t);
+        /* The leaf's blocks follow the nodes (GpuTriangleBlock, types.h); `first` is the first's index. */
+        __global const GpuTriangleBlock* blk = (__global const GpuTriangleBlock*)(scene->nodes + node_count) + first;
+        for (uint b = 0u; b < (n_prims + 3u) >> 2; ++b, ++blk) {
+          const uint i = blk->first;
+#if CLPT_WIDE_LEAF_TEST
+          const real4 t = triangle_block_distances(&ray, blk, hit->t);
+          bvh_triangle_lane(scene, &ray, t.s0, i, skip_triangle, alpha_seed, hit);
+          bvh_triangle_lane(scene, &ray, t.s1, i + 1u, skip_triangle, alpha_seed, hit);
+          bvh_triangle_lane(scene, &ray, t.s2, i + 2u, skip_triangle, alpha_seed, hit);
+          bvh_triangle_lane(scene, &ray, t.s3, i + 3u, skip_triangle, alpha_seed, hit);
 #else
-          const real t = triangle_intersect(&ray, &scene->triangles[i], hit->t);
+          for (uint j = 0u; j < blk->count; ++j) {
+            const Vec3 v0 = v3((real)blk->v[0][0][j], (real)blk->v[0][1][j], (real)blk->v[0][2][j]);
+            const Vec3 v1 = v3((real)blk->v[1][0][j], (real)blk->v[1][1][j], (real)blk->v[1][2][j]);
+            const Vec3 v2 = v3((real)blk->v[2][0][j], (real)blk->v[2][1][j], (real)blk->v[2][2][j]);
+            const real t = triangle_test_distance(triangle_test_of(&ray, v0, v1, v2), hit->t);
+            bvh_triangle_lane(scene, &ray, t, i + j, skip_triangle, alpha_seed, hit);
+          }
 #endif
-#if CLPT_HAS_TRIANGLE_LIGHTS
-          bool closer = t < hit->t && (int)i != skip_triangle;
-#else
-          bool closer = t < hit->t;
-#endif
-#if CLPT_HAS_ALPHA
-          if (closer) closer = !alpha_cut(scene->texturing, i, test, alpha_seed);
-#endif
-          hit->t = closer ? t : hit->t;
-          hit->sphere = closer ? -1 : hit->sphere;
-          hit->triangle = closer ? (int)i : hit->triangle;
         }
 #endif
       }

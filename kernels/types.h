@@ -103,6 +103,20 @@ typedef struct GpuBvhNode {
   clpt_u32 count[4]; /* interior child or empty: 0; leaf: primitive count | CLPT_BVH_SPHERE_LEAF */
 } GpuBvhNode;
 
+/* The triangles of a hierarchy leaf as the traversal tests them (bvh.cl): up to four side by side,
+ * each coordinate of each vertex as four lanes (v[vertex][axis][lane]), so that one vector
+ * operation tests all four. 160 bytes. They follow the nodes in the hierarchy's buffer (at node
+ * bvh_node_count); a triangle leaf's child[i] is the index of its first block there (not of its
+ * first triangle, as the host's tree says: scene/device_scene.h, hierarchy_device_data), its count
+ * the triangles, ceil(count / 4) blocks. Lanes past `count` are zero: a triangle of no area, which
+ * no ray hits. */
+typedef struct GpuTriangleBlock {
+  float v[3][3][4];
+  clpt_u32 first; /* lane 0's triangle (the triangle buffer's index); lane j's is first + j */
+  clpt_u32 count; /* lanes in use, 1 to 4 */
+  clpt_u32 pad[2];
+} GpuTriangleBlock;
+
 /* A triangle's vertices for intersection, camera-relative: 48 bytes (16-byte rows). Triangles are
  * stored in the hierarchy's leaf order. */
 typedef struct GpuTriangle {
@@ -373,6 +387,9 @@ typedef struct GpuPixelPass {
   X(GpuBvhNode, upper_z)                                                                          \
   X(GpuBvhNode, child)                                                                            \
   X(GpuBvhNode, count)                                                                            \
+  X(GpuTriangleBlock, v)                                                                          \
+  X(GpuTriangleBlock, first)                                                                      \
+  X(GpuTriangleBlock, count)                                                                      \
   X(GpuTriangle, v0)                                                                              \
   X(GpuTriangle, v1)                                                                              \
   X(GpuTriangle, v2)                                                                              \
@@ -478,7 +495,7 @@ typedef struct GpuPixelPass {
   X(GpuPixelPass, sum_sq)                                                                         \
   X(GpuPixelPass, segments)
 
-#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass) \
+#define CLPT_LAYOUT_STRUCTS(X) X(GpuMaterial) X(GpuBvhNode) X(GpuTriangleBlock) X(GpuTriangle) X(GpuTriangleShading) X(GpuSphere) X(GpuLight) X(GpuCamera) X(GpuRenderParams) X(GpuSampleSlot) X(GpuEnvironment) X(GpuPixelPass) \
   X(GpuTexturing) X(GpuTexture) X(GpuMaterialTextures) X(GpuTriangleTexturing) X(GpuTriangleTangents) X(GpuTriangleColors)
 
 /* The sizes stated above, checked when each side compiles this header: by static_assert on the

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "device_test_util.h"
@@ -62,8 +63,8 @@ struct DeviceAnswer {
 // Runs probe_scene_hit (tests/kernels/probe_stages.cl) on world-space rays; shadow distances at
 // (1 -+ 1e-4) of `shadow_at` per ray -+ 1e-5 (the boxes' slab test rounds like coordinates of
 // size 3, about 1e-6 absolute, which a relative margin alone misses for hits very near the origin).
-std::vector<DeviceAnswer> query(const Scene& scene, const DeviceScene& ds, const std::vector<Ray>& rays,
-                                bool brute_force, const std::vector<float>& shadow_at = {}) {
+std::vector<DeviceAnswer> query_with(const std::string& options, const Scene& scene, const DeviceScene& ds,
+                                     const std::vector<Ray>& rays, bool brute_force, const std::vector<float>& shadow_at) {
   std::vector<cl_float4> packed;
   std::vector<cl_float2> shadow;
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -78,8 +79,8 @@ std::vector<DeviceAnswer> query(const Scene& scene, const DeviceScene& ds, const
   params.sphere_count = ds.loop_spheres;
   params.bvh_node_count = cl_uint(ds.bvh.nodes.size());
   params.ray_epsilon = ds.ray_epsilon;
-  Kernel kernel(test_program("probe_stages.cl"), "probe_scene_hit", test_device().where());
-  Buffer spheres = upload(ds.spheres), nodes = upload(ds.bvh.nodes), triangles = upload(ds.triangles);
+  Kernel kernel(test_program("probe_stages.cl", options), "probe_scene_hit", test_device().where());
+  Buffer spheres = upload(ds.spheres), nodes = upload(hierarchy_device_data(ds)), triangles = upload(ds.triangles);
   Buffer in = upload(packed), shadow_in = upload(shadow);
   Buffer out(test_device(), rays.size() * 2 * sizeof(cl_float4), CL_MEM_WRITE_ONLY, "answers");
   kernel.set_arg(0, spheres);
@@ -101,6 +102,24 @@ std::vector<DeviceAnswer> query(const Scene& scene, const DeviceScene& ds, const
     answers.push_back({a.s[0], int(a.s[1]), int(a.s[2]), b.s[0] != 0, b.s[1] != 0});
   }
   return answers;
+}
+
+// The answers of the hierarchy (or the brute force), with a leaf's four triangles in one vector
+// test (CPUs); the same query with them tested one at a time (GPUs: CLPT_WIDE_LEAF_TEST=0,
+// kernels/bvh.cl) must give the same answers bit for bit.
+std::vector<DeviceAnswer> query(const Scene& scene, const DeviceScene& ds, const std::vector<Ray>& rays,
+                                bool brute_force, const std::vector<float>& shadow_at = {}) {
+  const std::vector<DeviceAnswer> wide = query_with("-cl-std=CL1.2", scene, ds, rays, brute_force, shadow_at);
+  if (brute_force) return wide;
+  const std::vector<DeviceAnswer> one = query_with("-cl-std=CL1.2 -DCLPT_WIDE_LEAF_TEST=0", scene, ds, rays, false, shadow_at);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&wide[i].t, &one[i].t, sizeof(float)), 0) << "ray " << i << ": " << wide[i].t << " vs " << one[i].t;
+    EXPECT_EQ(wide[i].sphere, one[i].sphere) << "ray " << i;
+    EXPECT_EQ(wide[i].triangle, one[i].triangle) << "ray " << i;
+    EXPECT_EQ(wide[i].blocked_before, one[i].blocked_before) << "ray " << i;
+    EXPECT_EQ(wide[i].blocked_after, one[i].blocked_after) << "ray " << i;
+  }
+  return wide;
 }
 
 std::vector<Ray> random_rays(std::mt19937& rng, int count, double extent) {

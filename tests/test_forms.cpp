@@ -276,6 +276,11 @@ TEST(TriangleLoop, CapIsTheCornellBoxsCount) {
   f.unroll_scene_loops = true;
   EXPECT_FALSE(f.triangles_in_loop());
   EXPECT_NE(kernel_build_options(f).find("-DCLPT_HAS_BVH=1"), std::string::npos);
+  // The hierarchy's leaves: four triangles in one vector test with PoCL's 16 lanes set (the
+  // default, named nowhere), one at a time elsewhere (kernels/bvh.cl, CLPT_WIDE_LEAF_TEST).
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_WIDE_LEAF_TEST"), std::string::npos);
+  f.cpu_vector_lanes = 0;
+  EXPECT_NE(kernel_build_options(f).find("-DCLPT_WIDE_LEAF_TEST=0"), std::string::npos);
 }
 
 TEST(TriangleLoop, EqualsTheHierarchy) {

@@ -147,15 +147,15 @@ TEST(Limits, FirstHitLayersCountInTheMemoryEstimate) {
   EXPECT_EQ(wf_aovs.total_bytes - wf.total_bytes, 65536u * 112 + 1000u * 28 + 1000u * 4096 * 28);
 }
 
-// Triangles add 48 + 112 B each and at most (2n + 2) / 3 128-byte 4-wide nodes for n primitives
-// (spheres included); a device
+// Triangles add 48 + 112 B each, a 160-byte leaf block each at most and at most (2n + 2) / 3
+// 128-byte 4-wide nodes for n primitives (spheres included); a device
 // whose largest allocation cannot hold the shading records refuses before upload, naming them.
 TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   const DeviceInfo d = fake_device(8ull << 30, 2ull << 30);
   const MemoryEstimate plain = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d);
   const MemoryEstimate mesh = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000);
-  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 112) + (2u * 100010 + 2) / 3 * 128);
-  EXPECT_EQ(kDeviceBytesPerTriangle, 246u);
+  EXPECT_EQ(mesh.total_bytes - plain.total_bytes, 100000u * (48 + 112 + 160) + (2u * 100010 + 2) / 3 * 128);
+  EXPECT_EQ(kDeviceBytesPerTriangle, 406u);
   // An emitting mesh's triangles are light entries too (80 B each), counted from the scene.
   const MemoryEstimate lit = estimate_device_memory(ExecutionForm::Megakernel, 1000, 10, 0, d, 100000, 100001);
   EXPECT_EQ(lit.total_bytes - mesh.total_bytes, 100001u * 80);
@@ -168,10 +168,10 @@ TEST(Limits, TrianglesCountInTheMemoryEstimate) {
   EXPECT_EQ(light_entry_bound(scene), 13u);
   const DeviceInfo small = fake_device(8ull << 30, 64ull << 20);
   const MemoryEstimate big = estimate_device_memory(ExecutionForm::Megakernel, 100, 1, 0, small, 1000000);
-  EXPECT_EQ(big.largest_label, "triangle shading");
+  EXPECT_EQ(big.largest_label, "hierarchy nodes and leaf triangles");
   const auto [code, message] = error_of([&] { check_device_memory(big, small); });
   EXPECT_EQ(code, ExitCode::DeviceError);
-  EXPECT_NE(message.find("buffer 'triangle shading' would be 106.8 MiB"), std::string::npos) << message;
+  EXPECT_NE(message.find("buffer 'hierarchy nodes and leaf triangles' would be 234.0 MiB"), std::string::npos) << message;
 }
 
 TEST(Limits, MemoryErrorsNameTheDeviceAndSizes) {

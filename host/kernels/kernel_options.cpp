@@ -366,6 +366,9 @@ std::string kernel_build_options(const KernelFeatures& features) {
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
+  // A leaf's four triangles in one vector test only on PoCL's CPU device with its vectoriser's width
+  // set (bvh.cl; as the triangle loop): named only elsewhere, where they are tested one at a time.
+  if (features.has_hierarchy() && !features.wide_leaf_test()) o << " -DCLPT_WIDE_LEAF_TEST=0";
   // Read by no kernel: PoCL's vectoriser takes the width from the host (cl/pocl_vectoriser.h), and
   // it is here so that PoCL's cache and clpt's keep a 16-lane build apart from LLVM's own.
   if (features.cpu_vector_lanes > 0) o << " -DCLPT_CPU_VECTOR_LANES=" << features.cpu_vector_lanes;
@@ -525,7 +528,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                   (features.triangles && features.spheres_in_bvh ? "triangles and spheres"
                    : features.triangles                          ? "triangles"
                                                                  : "spheres") +
-                  " in the hierarchy; closest hit and any-hit shadow rays)"
+                  " in the hierarchy; closest hit and any-hit shadow rays" +
+                  (features.triangles ? (features.wide_leaf_test() ? "; a leaf's four triangles in one vector test"
+                                                                  : "; a leaf's triangles one at a time (not PoCL's CPU device with its 16 lanes set)")
+                                      : "") +
+                  ")"
             : std::string(features.triangles ? "left out (the triangles are in the unrolled loop, and few enough spheres for theirs)"
                                              : "left out (no triangles, and few enough spheres for the loop)"))
     << "\n";

@@ -186,6 +186,11 @@ struct KernelFeatures {
     return !generic && triangles && loop_triangles > 0 && !spheres_in_bvh && unroll_scene_loops &&
            cpu_vector_lanes > 0;
   }
+  // CLPT_WIDE_LEAF_TEST (kernels/bvh.cl): a hierarchy leaf's four triangles tested in one vector
+  // operation, on PoCL's CPU device with its vectoriser's width set (measured faster there; on a GPU
+  // it costs a third more registers in the traversing kernels: docs/performance.md); else one at a
+  // time from the same leaf block.
+  bool wide_leaf_test() const { return cpu_vector_lanes > 0; }
   // CLPT_HAS_BVH: traversal compiled (triangles not in the loop, spheres_in_bvh or generic).
   bool has_hierarchy() const { return generic || (triangles && !triangles_in_loop()) || spheres_in_bvh; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time

@@ -123,11 +123,13 @@ MemoryEstimate estimate_device_memory(ExecutionForm form, uint64_t pixels, size_
   add_buffer(e, lights * sizeof(GpuLight), "lights");
   add_buffer(e, environment_bytes, "environment");
   if (triangles > 0) {
-    static_assert(sizeof(GpuTriangle) + sizeof(GpuTriangleShading) + (2 * sizeof(GpuBvhNode) + 2) / 3 == kDeviceBytesPerTriangle,
+    static_assert(sizeof(GpuTriangle) + sizeof(GpuTriangleShading) + (2 * sizeof(GpuBvhNode) + 2) / 3 +
+                          sizeof(GpuTriangleBlock) == kDeviceBytesPerTriangle,
                   "kDeviceBytesPerTriangle states the layouts of kernels/types.h");
     add_buffer(e, triangles * sizeof(GpuTriangle), "triangles");
     add_buffer(e, triangles * sizeof(GpuTriangleShading), "triangle shading");
-    add_buffer(e, kMaxBvhNodes(triangles + spheres) * sizeof(GpuBvhNode), "hierarchy nodes");
+    add_buffer(e, kMaxBvhNodes(triangles + spheres) * sizeof(GpuBvhNode) + triangles * sizeof(GpuTriangleBlock),
+               "hierarchy nodes and leaf triangles");
   }
   // Both forms keep result_bytes_per_job per sample of a launch (job results) and 32 B per pixel of a launch (pass
   // statistics). Wavefront launches cover the whole image; megakernel launches at most budget / 32

@@ -25,8 +25,9 @@ constexpr uint64_t kMaxTriangles = 1ull << 27;
 // Device bytes per triangle: GpuTriangle (48) + GpuTriangleShading (112) + at most 2/3 of a 4-wide
 // hierarchy node (128 B; 86 rounded up): the collapse (scene/bvh_build.h) gives a node fewer than
 // 4 children only when all are leaves, so a tree over n primitives (at most n leaves) has at most
-// (2n + 2) / 3 nodes (kMaxBvhNodes).
-constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 86;
+// (2n + 2) / 3 nodes (kMaxBvhNodes) + at most one leaf block (GpuTriangleBlock, 160 B: a leaf's
+// triangles four by four, at least one a block).
+constexpr uint64_t kDeviceBytesPerTriangle = 48 + 112 + 86 + 160;
 constexpr uint64_t kMaxBvhNodes(uint64_t primitives) { return (2 * primitives + 2) / 3; }
 constexpr int kMaxBouncesLimit = 1000;
 constexpr uint32_t kMaxSamplesPerPass = 4096;  // keeps each pass's float sums exact enough

@@ -64,7 +64,7 @@ Renderer::SceneBufferSet Renderer::upload_scene(DeviceContext& ctx, const Device
   SceneBufferSet set;
   set.spheres = upload_entries(ctx, scene.spheres, "spheres");
   set.lights = upload_entries(ctx, scene.lights, "lights");
-  set.nodes = upload_entries(ctx, scene.bvh.nodes, "hierarchy nodes");
+  set.nodes = upload_entries(ctx, hierarchy_device_data(scene), "hierarchy nodes and leaf triangles");
   set.triangles = upload_entries(ctx, scene.triangles, "triangles");
   set.triangle_shading = upload_entries(ctx, scene.triangle_shading, "triangle shading");
   set.environment = upload_entries(ctx, scene.environment, "environment");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "scene/device_textures.h"
 #include "scene/environment_map.h"
@@ -262,6 +263,35 @@ double ray_epsilon_for(const Camera& camera, Precision precision) {
   // look-at point on it, would skip hits closer than 1e-5 of its distance, i.e. its own interior.
   const double scale = precision == Precision::Double ? 0x1p-29 : 1.0;
   return 1e-5 * scale * length(sub(camera.look_at, camera.position));
+}
+
+std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
+  std::vector<GpuBvhNode> nodes = scene.bvh.nodes;
+  std::vector<GpuTriangleBlock> blocks;
+  for (GpuBvhNode& node : nodes)
+    for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+      const uint32_t count = node.count[i];
+      if (count == 0u || (count & CLPT_BVH_SPHERE_LEAF)) continue;
+      const uint32_t first = node.child[i];
+      node.child[i] = static_cast<uint32_t>(blocks.size());
+      for (uint32_t b = 0; b < count; b += 4) {
+        GpuTriangleBlock block{};
+        block.first = first + b;
+        block.count = std::min<uint32_t>(4u, count - b);
+        for (uint32_t lane = 0; lane < block.count; ++lane) {
+          const GpuTriangle& t = scene.triangles.at(first + b + lane);
+          const float* v[3] = {t.v0, t.v1, t.v2};
+          for (int k = 0; k < 3; ++k)
+            for (int axis = 0; axis < 3; ++axis) block.v[k][axis][lane] = v[k][axis];
+        }
+        blocks.push_back(block);
+      }
+    }
+  std::vector<uint8_t> bytes(nodes.size() * sizeof(GpuBvhNode) + blocks.size() * sizeof(GpuTriangleBlock));
+  if (!nodes.empty()) std::memcpy(bytes.data(), nodes.data(), nodes.size() * sizeof(GpuBvhNode));
+  if (!blocks.empty())
+    std::memcpy(bytes.data() + nodes.size() * sizeof(GpuBvhNode), blocks.data(), blocks.size() * sizeof(GpuTriangleBlock));
+  return bytes;
 }
 
 DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision, BvhBuilder builder) {

@@ -39,6 +39,12 @@ struct DeviceScene {
   double scene_radius = 1;
 };
 
+// The hierarchy's buffer as the kernels read it (kernels/types.h, GpuTriangleBlock): scene.bvh.nodes,
+// each triangle leaf's child made the index of its first block, followed by the blocks, which hold
+// every triangle leaf's triangles four by four in leaf order. The host's tree (scene.bvh, which the
+// replica and the tests read) keeps the first triangle there. Empty when the scene has no nodes.
+std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene);
+
 // The point s0 of sphere s nearest `anchor` (the camera's look-at point) and the outward unit
 // normal n0 there, in world units: how every sphere is stored (kernels/types.h, GpuSphere).
 struct SurfaceFrame {
