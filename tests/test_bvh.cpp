@@ -258,6 +258,55 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
   }
 }
 
+// The hierarchy's device buffer (hierarchy_device_data): the nodes, a triangle leaf's child made
+// the index of its first block, sphere leaves and interior children as they were; the blocks hold
+// each leaf's triangles four by four in order, unused lanes zero; its size as announced.
+TEST(BvhBuild, LeafBlocksHoldEachLeafsTrianglesInOrder) {
+  for (const Scene& scene : comparison_scenes()) {
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    const std::vector<uint8_t> data = hierarchy_device_data(ds);
+    ASSERT_EQ(data.size(), hierarchy_device_bytes(ds));
+    const size_t nodes = ds.bvh.nodes.size();
+    ASSERT_EQ((data.size() - nodes * sizeof(GpuBvhNode)) % sizeof(GpuTriangleBlock), 0u);
+    const size_t blocks = (data.size() - nodes * sizeof(GpuBvhNode)) / sizeof(GpuTriangleBlock);
+    std::vector<GpuBvhNode> device_nodes(nodes);
+    std::vector<GpuTriangleBlock> block(blocks);
+    std::memcpy(device_nodes.data(), data.data(), nodes * sizeof(GpuBvhNode));
+    std::memcpy(block.data(), data.data() + nodes * sizeof(GpuBvhNode), blocks * sizeof(GpuTriangleBlock));
+    std::vector<int> used(blocks, 0);
+    size_t triangles = 0;
+    for (size_t n = 0; n < nodes; ++n)
+      for (int s = 0; s < CLPT_BVH_WIDTH; ++s) {
+        const uint32_t count = ds.bvh.nodes[n].count[s];
+        EXPECT_EQ(device_nodes[n].count[s], count);
+        if (count == 0u || (count & CLPT_BVH_SPHERE_LEAF)) {
+          EXPECT_EQ(device_nodes[n].child[s], ds.bvh.nodes[n].child[s]);
+          continue;
+        }
+        const uint32_t first = ds.bvh.nodes[n].child[s];
+        for (uint32_t k = 0; k < count; ++k) {
+          const size_t b = device_nodes[n].child[s] + k / 4, lane = k % 4;
+          ASSERT_LT(b, blocks);
+          used[b] += lane == 0 ? 1 : 0;
+          EXPECT_EQ(block[b].first, first + k - lane);
+          EXPECT_EQ(block[b].count, std::min<uint32_t>(4u, count - (k - uint32_t(lane))));
+          const GpuTriangle& t = ds.triangles[first + k];
+          const float* v[3] = {t.v0, t.v1, t.v2};
+          for (int vertex = 0; vertex < 3; ++vertex)
+            for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(block[b].v[vertex][axis][lane], v[vertex][axis]);
+          ++triangles;
+        }
+      }
+    EXPECT_EQ(triangles, ds.triangles.size());
+    for (size_t b = 0; b < blocks; ++b) {
+      EXPECT_EQ(used[b], 1) << "block " << b;
+      for (uint32_t lane = block[b].count; lane < 4; ++lane)
+        for (int vertex = 0; vertex < 3; ++vertex)
+          for (int axis = 0; axis < 3; ++axis) EXPECT_EQ(block[b].v[vertex][axis][lane], 0.0f);
+    }
+  }
+}
+
 // The collapse of a hand-built binary tree: the child of the largest area is opened first.
 TEST(BvhBuild, CollapseOpensTheLargestChildFirst) {
   // Binary (depth first): 0 = root(1, 2); 1 = interior(small: 3, 4)... laid out as the builders do.

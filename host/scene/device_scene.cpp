@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "scene/device_textures.h"
 #include "scene/environment_map.h"
@@ -265,6 +266,14 @@ double ray_epsilon_for(const Camera& camera, Precision precision) {
   return 1e-5 * scale * length(sub(camera.look_at, camera.position));
 }
 
+size_t hierarchy_device_bytes(const DeviceScene& scene) {
+  size_t blocks = 0;
+  for (const GpuBvhNode& node : scene.bvh.nodes)
+    for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
+      if (node.count[i] != 0u && !(node.count[i] & CLPT_BVH_SPHERE_LEAF)) blocks += (node.count[i] + 3u) / 4u;
+  return scene.bvh.nodes.size() * sizeof(GpuBvhNode) + blocks * sizeof(GpuTriangleBlock);
+}
+
 std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
   std::vector<GpuBvhNode> nodes = scene.bvh.nodes;
   std::vector<GpuTriangleBlock> blocks;
@@ -288,6 +297,7 @@ std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
       }
     }
   std::vector<uint8_t> bytes(nodes.size() * sizeof(GpuBvhNode) + blocks.size() * sizeof(GpuTriangleBlock));
+  if (bytes.size() != hierarchy_device_bytes(scene)) throw std::logic_error("hierarchy_device_data: size mismatch");
   if (!nodes.empty()) std::memcpy(bytes.data(), nodes.data(), nodes.size() * sizeof(GpuBvhNode));
   if (!blocks.empty())
     std::memcpy(bytes.data() + nodes.size() * sizeof(GpuBvhNode), blocks.data(), blocks.size() * sizeof(GpuTriangleBlock));

@@ -44,6 +44,8 @@ struct DeviceScene {
 // every triangle leaf's triangles four by four in leaf order. The host's tree (scene.bvh, which the
 // replica and the tests read) keeps the first triangle there. Empty when the scene has no nodes.
 std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene);
+// Its size in bytes, without building it.
+size_t hierarchy_device_bytes(const DeviceScene& scene);
 
 // The point s0 of sphere s nearest `anchor` (the camera's look-at point) and the outward unit
 // normal n0 there, in world units: how every sphere is stored (kernels/types.h, GpuSphere).

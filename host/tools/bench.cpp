@@ -108,7 +108,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
     row.trace = time_clpt_trace(device, planned.features, ds, make_params(scene, ds), sample, 0.5);
   if (row.triangles > 0)
     row.device_bytes_per_triangle =
-        double(row.triangles * (sizeof(GpuTriangle) + sizeof(GpuTriangleShading)) + hierarchy_device_data(ds).size()) /
+        double(row.triangles * (sizeof(GpuTriangle) + sizeof(GpuTriangleShading)) + hierarchy_device_bytes(ds)) /
         double(row.triangles);
 
   RenderPlan cold = plan;
