@@ -271,8 +271,9 @@ TEST(BvhBuild, LeafBlocksHoldEachLeafsTrianglesInOrder) {
     const size_t blocks = (data.size() - nodes * sizeof(GpuBvhNode)) / sizeof(GpuTriangleBlock);
     std::vector<GpuBvhNode> device_nodes(nodes);
     std::vector<GpuTriangleBlock> block(blocks);
-    std::memcpy(device_nodes.data(), data.data(), nodes * sizeof(GpuBvhNode));
-    std::memcpy(block.data(), data.data() + nodes * sizeof(GpuBvhNode), blocks * sizeof(GpuTriangleBlock));
+    if (nodes > 0) std::memcpy(device_nodes.data(), data.data(), nodes * sizeof(GpuBvhNode));
+    if (blocks > 0)  // a scene of spheres alone has none (memcpy from a null pointer is undefined)
+      std::memcpy(block.data(), data.data() + nodes * sizeof(GpuBvhNode), blocks * sizeof(GpuTriangleBlock));
     std::vector<int> used(blocks, 0);
     size_t triangles = 0;
     for (size_t n = 0; n < nodes; ++n)
