@@ -112,6 +112,13 @@ CLPT_INLINE BoxRay box_ray(Vec3 o, Vec3 inv) {
   return r;
 }
 
+/* max and min by compare and select: one instruction each where fmax and fmin add their NaN rule
+ * (a compare and a blend); no NaN reaches them (1/d is finite and at least 1 in magnitude). */
+CLPT_INLINE real4 bvh_max4(real4 a, real4 b) { return a > b ? a : b; }
+CLPT_INLINE real4 bvh_min4(real4 a, real4 b) { return a < b ? a : b; }
+CLPT_INLINE real bvh_max(real a, real b) { return a > b ? a : b; }
+CLPT_INLINE real bvh_min(real a, real b) { return a < b ? a : b; }
+
 /* Entry distances of the ray into the four child boxes of `node`, CLPT_NO_HIT for a box it misses
  * in [0, t_max): the slab test on all four slots at once. The far distance is widened by
  * 1 + 2 gamma(3) (Ize). */
@@ -122,8 +129,8 @@ CLPT_INLINE real4 bvh_node_entries(__global const GpuBvhNode* node, const BoxRay
   const real4 tnx = ((r->neg_x ? ux : lx) - r->ox) * r->ix, tfx = ((r->neg_x ? lx : ux) - r->ox) * r->ix;
   const real4 tny = ((r->neg_y ? uy : ly) - r->oy) * r->iy, tfy = ((r->neg_y ? ly : uy) - r->oy) * r->iy;
   const real4 tnz = ((r->neg_z ? uz : lz) - r->oz) * r->iz, tfz = ((r->neg_z ? lz : uz) - r->oz) * r->iz;
-  const real4 entry = fmax(fmax(tnx, tny), fmax(tnz, (real4)((real)0)));
-  const real4 far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f; /* 1 + 2 gamma(3) */
+  const real4 entry = bvh_max4(bvh_max4(tnx, tny), bvh_max4(tnz, (real4)((real)0)));
+  const real4 far = bvh_min4(bvh_min4(tfx, tfy), tfz) * (real)1.0000004f; /* 1 + 2 gamma(3) */
   const real4_mask in = (entry <= far) & (entry < (real4)(t_max));
   return in ? entry : (real4)(CLPT_NO_HIT);
 }
@@ -136,8 +143,8 @@ CLPT_INLINE real bvh_slot_entry(__global const GpuBvhNode* node, uint slot, cons
   const real tnx = ((r->neg_x ? ux : lx) - r->ox1) * r->ix1, tfx = ((r->neg_x ? lx : ux) - r->ox1) * r->ix1;
   const real tny = ((r->neg_y ? uy : ly) - r->oy1) * r->iy1, tfy = ((r->neg_y ? ly : uy) - r->oy1) * r->iy1;
   const real tnz = ((r->neg_z ? uz : lz) - r->oz1) * r->iz1, tfz = ((r->neg_z ? lz : uz) - r->oz1) * r->iz1;
-  const real entry = fmax(fmax(tnx, tny), fmax(tnz, (real)0));
-  const real far = fmin(fmin(tfx, tfy), tfz) * (real)1.0000004f;
+  const real entry = bvh_max(bvh_max(tnx, tny), bvh_max(tnz, (real)0));
+  const real far = bvh_min(bvh_min(tfx, tfy), tfz) * (real)1.0000004f;
   return entry <= far && entry < t_max ? entry : CLPT_NO_HIT;
 }
 
