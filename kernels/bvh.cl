@@ -11,8 +11,11 @@
  * first, through a fixed stack of CLPT_BVH_STACK entries (the host refuses a tree that could need
  * more). The slab test's far distance is widened by 1 + 2 gamma(3) (Ize, "Robust BVH Ray
  * Traversal", JCGT 2013), with boxes rounded outwards on the host, so no rounding makes a ray miss
- * a box that holds its hit. Compiled only with CLPT_HAS_BVH (kernel_options.cpp); without, the
- * queries are the sphere loop alone and no traversal code exists in the kernel.
+ * a box that holds its hit. A triangle leaf's triangles are read from its leaf blocks
+ * (GpuTriangleBlock, types.h: four side by side, after the nodes in the same buffer), four in one
+ * vector test on PoCL's CPU device (CLPT_WIDE_LEAF_TEST). Compiled only with CLPT_HAS_BVH
+ * (kernel_options.cpp); without, the queries are the sphere loop alone and no traversal code
+ * exists in the kernel.
  *
  * Hit ids: Hit.sphere is a sphere index or -1, Hit.triangle a triangle index or -1. */
 #ifndef CLPT_BVH_CL
