@@ -367,7 +367,8 @@ std::string kernel_build_options(const KernelFeatures& features) {
   const bool specialised_loops = !features.generic;
   if (specialised_loops && !features.unroll_scene_loops) o << " -DCLPT_UNROLL_SCENE_LOOPS=0";
   // A leaf's four triangles in one vector test only on PoCL's CPU device with its vectoriser's width
-  // set (bvh.cl; as the triangle loop): named only elsewhere, where they are tested one at a time.
+  // set, in a float preset (bvh.cl, wide_leaf_test): named only elsewhere, where they are tested one
+  // at a time.
   if (features.has_hierarchy() && !features.wide_leaf_test()) o << " -DCLPT_WIDE_LEAF_TEST=0";
   // Read by no kernel: PoCL's vectoriser takes the width from the host (cl/pocl_vectoriser.h), and
   // it is here so that PoCL's cache and clpt's keep a 16-lane build apart from LLVM's own.
@@ -530,7 +531,7 @@ std::string explain_kernel_options(const KernelFeatures& features) {
                                                                  : "spheres") +
                   " in the hierarchy; closest hit and any-hit shadow rays" +
                   (features.triangles ? (features.wide_leaf_test() ? "; a leaf's four triangles in one vector test"
-                                                                  : "; a leaf's triangles one at a time (not PoCL's CPU device with its 16 lanes set)")
+                                                                  : "; a leaf's triangles one at a time (the double preset, or not PoCL's CPU device with its 16 lanes set)")
                                       : "") +
                   ")"
             : std::string(features.triangles ? "left out (the triangles are in the unrolled loop, and few enough spheres for theirs)"

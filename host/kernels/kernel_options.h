@@ -187,10 +187,11 @@ struct KernelFeatures {
            cpu_vector_lanes > 0;
   }
   // CLPT_WIDE_LEAF_TEST (kernels/bvh.cl): a hierarchy leaf's four triangles tested in one vector
-  // operation, on PoCL's CPU device with its vectoriser's width set (measured faster there; on a GPU
-  // it costs a third more registers in the traversing kernels: docs/performance.md); else one at a
-  // time from the same leaf block.
-  bool wide_leaf_test() const { return cpu_vector_lanes > 0; }
+  // operation, on PoCL's CPU device with its vectoriser's width set and a float preset (measured
+  // faster there; on a GPU it costs a third more registers in the traversing kernels, and in the
+  // double preset PoCL's cold build of a lockstep megakernel 35-45% more time: docs/performance.md);
+  // else one at a time from the same leaf block.
+  bool wide_leaf_test() const { return cpu_vector_lanes > 0 && precision != Precision::Double; }
   // CLPT_HAS_BVH: traversal compiled (triangles not in the loop, spheres_in_bvh or generic).
   bool has_hierarchy() const { return generic || (triangles && !triangles_in_loop()) || spheres_in_bvh; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
