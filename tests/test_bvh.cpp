@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <random>
 
 #include "device_test_util.h"
@@ -309,6 +310,51 @@ TEST(BvhBuild, LeafBlocksHoldEachLeafsTrianglesInOrder) {
 }
 
 // The collapse of a hand-built binary tree: the child of the largest area is opened first.
+// A hierarchy of triangles alone is built with its leaves charged by their blocks of four
+// (BvhBuildOptions::leaf_group, make_device_scene): a subtree of four triangles or fewer costs one
+// block test as a leaf, less than any split of it, so none is split and leaves fill their blocks.
+// Where spheres are in the hierarchy (tested one at a time) every primitive costs one test.
+TEST(BvhBuild, TriangleLeavesAreChargedByTheirBlocks) {
+  for (const Scene& scene : comparison_scenes()) {
+    const DeviceScene ds = make_device_scene(scene, 4, 3);
+    if (ds.bvh.nodes.empty()) continue;
+    bool spheres = false;
+    // Primitives under child slot s of node n.
+    std::function<uint32_t(uint32_t, int)> under = [&](uint32_t n, int s) -> uint32_t {
+      const uint32_t count = ds.bvh.nodes[n].count[s];
+      if (count != 0u) {
+        spheres = spheres || (count & CLPT_BVH_SPHERE_LEAF) != 0u;
+        return count & CLPT_BVH_COUNT_MASK;
+      }
+      const GpuBvhNode& node = ds.bvh.nodes[n];
+      if (node.lower_x[s] > node.upper_x[s]) return 0u;  // empty slot
+      uint32_t total = 0;
+      for (int k = 0; k < CLPT_BVH_WIDTH; ++k) total += under(node.child[s], k);
+      return total;
+    };
+    uint32_t smallest_interior = UINT32_MAX;
+    size_t leaves = 0, triangles = 0;
+    for (uint32_t n = 0; n < ds.bvh.nodes.size(); ++n)
+      for (int s = 0; s < CLPT_BVH_WIDTH; ++s) {
+        const GpuBvhNode& node = ds.bvh.nodes[n];
+        if (node.count[s] != 0u) {
+          ++leaves;
+          triangles += (node.count[s] & CLPT_BVH_SPHERE_LEAF) ? 0u : (node.count[s] & CLPT_BVH_COUNT_MASK);
+        } else if (node.lower_x[s] <= node.upper_x[s]) {
+          smallest_interior = std::min(smallest_interior, under(n, s));
+        }
+      }
+    if (spheres) {
+      EXPECT_EQ(ds.bvh.leaf_group, 1);
+      continue;
+    }
+    EXPECT_EQ(ds.bvh.leaf_group, int(kTriangleBlockLanes));
+    EXPECT_GT(smallest_interior, kTriangleBlockLanes) << "an interior node over four triangles or fewer";
+    // Fuller leaves than a per-triangle SAH gives these soups and meshes (about 2 a leaf).
+    EXPECT_GT(double(triangles) / double(leaves), 2.5);
+  }
+}
+
 TEST(BvhBuild, CollapseOpensTheLargestChildFirst) {
   // Binary (depth first): 0 = root(1, 2); 1 = interior(small: 3, 4)... laid out as the builders do.
   auto box = [](float lo, float hi) {

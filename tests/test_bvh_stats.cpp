@@ -64,6 +64,14 @@ TEST(BvhStats, SahCostOfAHandBuiltTreeIsTheClosedForm) {
   leaf.nodes = {node({{{0, 0, 0}, {1, 2, 3}, 0, 4}})};
   EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 5.0);
   EXPECT_EQ(bvh_sah_cost(Bvh()), 0.0);
+  // Leaves charged in groups of four (a triangle hierarchy's blocks): the first tree's leaves of 2
+  // and 1 are one test each, 1 + 3/5 + 3/5 = 2.2; the single leaf of 4 one test, 1 + 1 = 2.
+  bvh.leaf_group = 4;
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(bvh), 2.2);
+  leaf.leaf_group = 4;
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 2.0);
+  leaf.nodes[0].count[0] = 5;  // two blocks
+  EXPECT_DOUBLE_EQ(bvh_sah_cost(leaf), 3.0);
 }
 
 TEST(BvhStats, SahCostOfTheBuildersTreeIsItsRecursiveCost) {
@@ -73,6 +81,7 @@ TEST(BvhStats, SahCostOfTheBuildersTreeIsItsRecursiveCost) {
   scene.camera.position = {0, 0, 8};
   scene.meshes = {random_soup(rng, 2000, {0, 0, 0}, 2.0, 0.3, lambertian(0.5))};
   const DeviceScene ds = make_device_scene(scene, 4, 3);
+  ASSERT_EQ(ds.bvh.leaf_group, 4);  // triangles alone: leaves are charged by their blocks of four
   const std::vector<GpuBvhNode>& n = ds.bvh.nodes;
   auto area = [](const GpuBvhNode& b, int i) {
     const double x = double(b.upper_x[i]) - b.lower_x[i], y = double(b.upper_y[i]) - b.lower_y[i],
@@ -80,12 +89,12 @@ TEST(BvhStats, SahCostOfTheBuildersTreeIsItsRecursiveCost) {
     return x < 0 ? 0.0 : x * y + y * z + z * x;
   };
   // cost(node of box area A) = C_t + sum over its children of A_child cost(child) / A, a leaf's
-  // cost its count; the root's box is the union of its children's.
+  // cost its blocks (ceil(count / 4)); the root's box is the union of its children's.
   std::function<double(uint32_t, double)> cost = [&](uint32_t i, double a) -> double {
     double c = 1.0;
     for (int k = 0; k < CLPT_BVH_WIDTH; ++k) {
       if (area(n[i], k) == 0 && n[i].lower_x[k] > n[i].upper_x[k]) continue;  // empty slot
-      const double child = n[i].count[k] != 0 ? double(n[i].count[k] & CLPT_BVH_COUNT_MASK)
+      const double child = n[i].count[k] != 0 ? double(((n[i].count[k] & CLPT_BVH_COUNT_MASK) + 3u) / 4u)
                                               : cost(n[i].child[k], area(n[i], k));
       c += area(n[i], k) * child / a;
     }

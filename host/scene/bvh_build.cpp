@@ -305,6 +305,12 @@ struct Builder {
   // primitive of the right side after partitioning, or `begin` when no split beats a leaf (or none
   // exists); sets the two sides' boxes when it splits by the SAH.
   // `centre_box` is the box of the range's centroids; the sides' centroid boxes are set with theirs.
+  // The SAH's cost of testing n primitives: one per group of options.leaf_group.
+  double leaf_cost(size_t n) const {
+    const size_t group = size_t(options.leaf_group);
+    return double((n + group - 1) / group);
+  }
+
   size_t split(size_t begin, size_t end, const BvhBox& box, const BvhBox& centre_box, BvhBox& left_box,
                BvhBox& right_box, BvhBox& left_centres, BvhBox& right_centres) {
     const size_t count = end - begin;
@@ -333,7 +339,7 @@ struct Builder {
         if (bin.count[size_t(b)] > 0) {
           grow_into(right, bin.box[size_t(b)]);
           right_n += bin.count[size_t(b)];
-          side_cost = right.half_area() * double(right_n);
+          side_cost = right.half_area() * leaf_cost(right_n);
         }
         right_cost[size_t(b)] = side_cost;
       }
@@ -344,7 +350,7 @@ struct Builder {
         if (bin.count[size_t(plane - 1)] > 0) {
           grow_into(left, bin.box[size_t(plane - 1)]);
           left_n += bin.count[size_t(plane - 1)];
-          side_cost = left.half_area() * double(left_n);
+          side_cost = left.half_area() * leaf_cost(left_n);
         }
         if (left_n == 0 || left_n == count) continue;
         const double cost = side_cost + right_cost[size_t(plane)];
@@ -358,7 +364,7 @@ struct Builder {
     const double area = box.half_area();
     const double split_cost = options.traversal_cost + (area > 0 ? best_cost / area : INFINITY);
     const bool leaf_ok = count <= static_cast<size_t>(options.max_leaf);
-    if (best_axis < 0 || (leaf_ok && split_cost >= double(count))) {
+    if (best_axis < 0 || (leaf_ok && split_cost >= leaf_cost(count))) {
       if (leaf_ok || count < 2) return begin;
       // Coincident centroids: halve by index so the recursion ends.
       const size_t mid = begin + count / 2;
@@ -489,6 +495,8 @@ Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions
   const double cpu_start = process_cpu_seconds();
   if (options.bins < 2 || options.bins > 32)
     throw Error(ExitCode::Failure, "build_bvh: bins must be 2 to 32, not " + std::to_string(options.bins));
+  if (options.leaf_group < 1 || options.leaf_group > options.max_leaf)
+    throw Error(ExitCode::Failure, "build_bvh: leaf_group must be 1 to max_leaf, not " + std::to_string(options.leaf_group));
   Builder b{options, primitives, {}, {}};
   b.threads.spare = bvh_build_threads(options) - 1;
   Bvh out;
@@ -502,6 +510,7 @@ Bvh build_bvh(const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions
   out.build_seconds = seconds_since(start);
   out.build_cpu_seconds = process_cpu_seconds() - cpu_start;
   out.build_threads = bvh_build_threads(options);
+  out.leaf_group = options.leaf_group;
   return out;
 }
 

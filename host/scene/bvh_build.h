@@ -34,6 +34,10 @@ struct BvhBuildOptions {
   int bins = 16;      // candidate split planes per axis and node
   int max_leaf = 4;   // a range this small (or smaller) may become a leaf when the SAH says so
   double traversal_cost = 1.0;  // SAH cost of visiting a node, against 1 per primitive test
+  // Primitives a leaf tests together: the SAH counts a leaf (and each side of a split) as
+  // ceil(n / leaf_group) tests. make_device_scene sets 4 for a hierarchy of triangles alone, whose
+  // leaves the kernels read as blocks of four (GpuTriangleBlock); 1 where spheres are in it.
+  int leaf_group = 1;
   // Threads of the build (std::thread); 0: one per hardware thread. The hierarchy is the same for
   // any count (the nodes and leaf orders, byte for byte), only its build time differs.
   int threads = 0;
@@ -67,6 +71,7 @@ struct Bvh {
   // work shares, the figure that holds; 0 where not measured (Embree's builder).
   double build_cpu_seconds = 0;
   int build_threads = 1;   // threads the build could use (bvh_build_threads)
+  int leaf_group = 1;      // the build's BvhBuildOptions::leaf_group, which bvh_sah_cost charges alike
 };
 
 // The threads a build with `options` uses at most: options.threads, or the hardware's.

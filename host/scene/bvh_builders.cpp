@@ -43,7 +43,12 @@ BvhBuilder parse_bvh_builder(const std::string& name, const std::string& option)
 Bvh build_bvh_with(BvhBuilder builder, const std::vector<BvhPrimitive>& primitives, const BvhBuildOptions& options) {
   const bool embree = builder == BvhBuilder::Embree || builder == BvhBuilder::EmbreeOneThread;
 #ifdef CLPT_WITH_EMBREE
-  if (embree) return build_bvh_embree(primitives, options, builder == BvhBuilder::EmbreeOneThread ? 1 : 0);
+  if (embree) {
+    // Embree's builder has its own leaf costs; its tree's SAH cost is reported in the same model.
+    Bvh b = build_bvh_embree(primitives, options, builder == BvhBuilder::EmbreeOneThread ? 1 : 0);
+    b.leaf_group = options.leaf_group;
+    return b;
+  }
 #else
   if (embree)
     throw Error(ExitCode::Usage, std::string("hierarchy builder ") + bvh_builder_name(builder) +

@@ -142,11 +142,15 @@ double bvh_sah_cost(const Bvh& bvh, double traversal_cost) {
   if (bvh.nodes.empty()) return 0;
   const double root = node_half_area(bvh.nodes.front());
   if (!(root > 0)) return 0;
+  const uint32_t group = uint32_t(std::max(bvh.leaf_group, 1));
   double cost = 0;
   for (const GpuBvhNode& n : bvh.nodes) {
     cost += traversal_cost * node_half_area(n) / root;
     for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
-      if (n.count[i] != 0u) cost += double(n.count[i] & CLPT_BVH_COUNT_MASK) * slot_half_area(n, i) / root;
+      if (n.count[i] != 0u) {
+        const uint32_t tests = ((n.count[i] & CLPT_BVH_COUNT_MASK) + group - 1u) / group;
+        cost += double(tests) * slot_half_area(n, i) / root;
+      }
   }
   return cost;
 }

@@ -19,9 +19,10 @@ namespace clpt {
 
 // The SAH cost of `bvh` by its own boxes, in units of one primitive test: the sum over its 4-wide
 // nodes of traversal_cost * A(node) / A(root) (a node's box: the union of its children's; one
-// test of its four boxes costs traversal_cost) plus the sum over leaves of count * A(leaf) /
-// A(root) (A: surface area), the expected cost of a ray through the root under the heuristic's
-// assumptions. 0 with no nodes or a root of no area.
+// test of its four boxes costs traversal_cost) plus the sum over leaves of tests * A(leaf) /
+// A(root) (A: surface area; tests: the leaf's count in groups of bvh.leaf_group, as its builder
+// charged them, e.g. blocks of four triangles), the expected cost of a ray through the root under
+// the heuristic's assumptions. 0 with no nodes or a root of no area.
 double bvh_sah_cost(const Bvh& bvh, double traversal_cost = 1.0);
 
 // A ray in the kernels' camera-relative coordinates; `direction` need not be unit. `t_min` is the

@@ -270,7 +270,7 @@ size_t hierarchy_device_bytes(const DeviceScene& scene) {
   size_t blocks = 0;
   for (const GpuBvhNode& node : scene.bvh.nodes)
     for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
-      if (node.count[i] != 0u && !(node.count[i] & CLPT_BVH_SPHERE_LEAF)) blocks += (node.count[i] + 3u) / 4u;
+      if (node.count[i] != 0u && !(node.count[i] & CLPT_BVH_SPHERE_LEAF)) blocks += (node.count[i] + kTriangleBlockLanes - 1u) / kTriangleBlockLanes;
   return scene.bvh.nodes.size() * sizeof(GpuBvhNode) + blocks * sizeof(GpuTriangleBlock);
 }
 
@@ -283,10 +283,10 @@ std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
       if (count == 0u || (count & CLPT_BVH_SPHERE_LEAF)) continue;
       const uint32_t first = node.child[i];
       node.child[i] = static_cast<uint32_t>(blocks.size());
-      for (uint32_t b = 0; b < count; b += 4) {
+      for (uint32_t b = 0; b < count; b += kTriangleBlockLanes) {
         GpuTriangleBlock block{};
         block.first = first + b;
-        block.count = std::min<uint32_t>(4u, count - b);
+        block.count = std::min(kTriangleBlockLanes, count - b);
         for (uint32_t lane = 0; lane < block.count; ++lane) {
           const GpuTriangle& t = scene.triangles.at(first + b + lane);
           const float* v[3] = {t.v0, t.v1, t.v2};
@@ -329,7 +329,11 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
       prims.push_back(prim);
     }
   }
-  out.bvh = build_bvh_with(builder, prims);
+  // A hierarchy of triangles alone: its leaves are read as blocks of four (GpuTriangleBlock), so
+  // the SAH charges a leaf by its blocks and fills them (docs/performance.md, "Traversal").
+  BvhBuildOptions build;
+  if (!spheres_in_bvh) build.leaf_group = int(kTriangleBlockLanes);
+  out.bvh = build_bvh_with(builder, prims, build);
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
   if (spheres_in_bvh) {

@@ -39,6 +39,9 @@ struct DeviceScene {
   double scene_radius = 1;
 };
 
+// Triangles a leaf block holds side by side (GpuTriangleBlock's lanes, kernels/types.h).
+constexpr uint32_t kTriangleBlockLanes = 4;
+
 // The hierarchy's buffer as the kernels read it (kernels/types.h, GpuTriangleBlock): scene.bvh.nodes,
 // each triangle leaf's child made the index of its first block, followed by the blocks, which hold
 // every triangle leaf's triangles four by four in leaf order. The host's tree (scene.bvh, which the
