@@ -275,15 +275,21 @@ size_t hierarchy_device_bytes(const DeviceScene& scene) {
 }
 
 std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
-  std::vector<GpuBvhNode> nodes = scene.bvh.nodes;
-  std::vector<GpuTriangleBlock> blocks;
-  for (GpuBvhNode& node : nodes)
+  // Written in place: for a million triangles the buffer is tens of megabytes, and every temporary
+  // copy of it is as many fresh pages for the process to fault in.
+  std::vector<uint8_t> bytes(hierarchy_device_bytes(scene));
+  const size_t node_bytes = scene.bvh.nodes.size() * sizeof(GpuBvhNode);
+  const size_t blocks = (bytes.size() - node_bytes) / sizeof(GpuTriangleBlock);
+  size_t next = 0;  // the next block to write
+  for (size_t n = 0; n < scene.bvh.nodes.size(); ++n) {
+    GpuBvhNode node = scene.bvh.nodes[n];
     for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
       const uint32_t count = node.count[i];
       if (count == 0u || (count & CLPT_BVH_SPHERE_LEAF)) continue;
       const uint32_t first = node.child[i];
-      node.child[i] = static_cast<uint32_t>(blocks.size());
-      for (uint32_t b = 0; b < count; b += kTriangleBlockLanes) {
+      node.child[i] = static_cast<uint32_t>(next);
+      for (uint32_t b = 0; b < count; b += kTriangleBlockLanes, ++next) {
+        if (next >= blocks) throw std::logic_error("hierarchy_device_data: more blocks than counted");
         GpuTriangleBlock block{};
         block.first = first + b;
         block.count = std::min(kTriangleBlockLanes, count - b);
@@ -293,14 +299,12 @@ std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
           for (int k = 0; k < 3; ++k)
             for (int axis = 0; axis < 3; ++axis) block.v[k][axis][lane] = v[k][axis];
         }
-        blocks.push_back(block);
+        std::memcpy(bytes.data() + node_bytes + next * sizeof(GpuTriangleBlock), &block, sizeof block);
       }
     }
-  std::vector<uint8_t> bytes(nodes.size() * sizeof(GpuBvhNode) + blocks.size() * sizeof(GpuTriangleBlock));
-  if (bytes.size() != hierarchy_device_bytes(scene)) throw std::logic_error("hierarchy_device_data: size mismatch");
-  if (!nodes.empty()) std::memcpy(bytes.data(), nodes.data(), nodes.size() * sizeof(GpuBvhNode));
-  if (!blocks.empty())
-    std::memcpy(bytes.data() + nodes.size() * sizeof(GpuBvhNode), blocks.data(), blocks.size() * sizeof(GpuTriangleBlock));
+    std::memcpy(bytes.data() + n * sizeof(GpuBvhNode), &node, sizeof node);
+  }
+  if (next != blocks) throw std::logic_error("hierarchy_device_data: fewer blocks than counted");
   return bytes;
 }
 
