@@ -118,8 +118,7 @@ TextureWrap wrap_of(int mode, const std::string& element) {
 
 // KHR_texture_transform's offset, rotation and scale, conjugated into clpt's coordinates (OBJ's:
 // v' = 1 - v of glTF's; scene.h): M = F T R S F with F(u, v) = (u, 1 - v).
-std::array<double, 6> texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& element,
-                                        std::vector<std::string>& warnings) {
+std::array<double, 6> texture_transform(const tinygltf::ExtensionMap& extensions, const std::string& element) {
   const auto it = extensions.find("KHR_texture_transform");
   if (it == extensions.end()) return {1, 0, 0, 0, 1, 0};
   const std::string e = element + ".extensions.KHR_texture_transform";
@@ -165,7 +164,7 @@ int tex_coord_of(int tex_coord, const tinygltf::ExtensionMap& extensions, const 
 // The texture `info` (a textureInfo or normalTextureInfo: index, texCoord, extensions) as a
 // TextureRef, its image loaded in colour space `space`; `ref_set` gets its coordinate set.
 TextureRef texture_ref(ImageCache& cache, int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
-                       ColorSpace space, const std::string& element, std::vector<std::string>& warnings, int& ref_set) {
+                       ColorSpace space, const std::string& element, int& ref_set) {
   TextureRef ref;
   if (index < 0) return ref;
   const tinygltf::Model& model = cache.model;
@@ -190,7 +189,7 @@ TextureRef texture_ref(ImageCache& cache, int index, int tex_coord, const tinygl
     // Magnification decides: clpt reads no mipmaps (docs/textures.md).
     if (sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) ref.filter = TextureFilter::Nearest;
   }
-  ref.uv_transform = texture_transform(extensions, element, warnings);
+  ref.uv_transform = texture_transform(extensions, element);
   ref.where = cache.path + ": " + element + ".index";
   ref.image = load_image(cache, texture.source, space, element);
   return ref;
@@ -207,17 +206,17 @@ void read_textures(ImageCache& cache, const tinygltf::Material& m, const std::st
   const std::string names[4] = {p + "baseColorTexture", p + "metallicRoughnessTexture", element + ".emissiveTexture",
                                 element + ".normalTexture"};
   t.base_color = texture_ref(cache, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                             pbr.baseColorTexture.extensions, ColorSpace::Srgb, names[0], warnings, sets[0]);
+                             pbr.baseColorTexture.extensions, ColorSpace::Srgb, names[0], sets[0]);
   // Roughness in G, metalness in B (linear).
   const auto& mr = pbr.metallicRoughnessTexture;
-  t.roughness = texture_ref(cache, mr.index, mr.texCoord, mr.extensions, ColorSpace::Linear, names[1], warnings, sets[1]);
+  t.roughness = texture_ref(cache, mr.index, mr.texCoord, mr.extensions, ColorSpace::Linear, names[1], sets[1]);
   t.metallic = t.roughness;
   t.roughness.channel = 1;
   t.metallic.channel = 2;
   t.emission = texture_ref(cache, m.emissiveTexture.index, m.emissiveTexture.texCoord, m.emissiveTexture.extensions,
-                           ColorSpace::Srgb, names[2], warnings, sets[2]);
+                           ColorSpace::Srgb, names[2], sets[2]);
   t.normal = texture_ref(cache, m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
-                         ColorSpace::Linear, names[3], warnings, sets[3]);
+                         ColorSpace::Linear, names[3], sets[3]);
   int chosen = -1;
   for (int i = 0; i < 4 && chosen < 0; ++i) chosen = sets[i] >= 0 ? i : -1;
   if (chosen >= 0) {
