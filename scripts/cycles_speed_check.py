@@ -17,7 +17,7 @@ the reference, the samples per second from the difference between the largest an
 reach the RMSE given by --target.
 
     scripts/cycles_speed_check.py CLPT_BINARY WORK_DIR [--size N] [--spp 16,32,64] [--ref-spp 4096]
-        [--target 0.01] [--repeat 2]
+        [--target 0.01] [--repeat 2] [--mesh PLY]
 """
 import argparse
 import math
@@ -33,17 +33,25 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENE = os.path.join(ROOT, "scenes", "cornell-box.toml")
 
 BLENDER_SIDE = r'''
-import bpy, math, sys, tomllib
+import bpy, math, os, sys, tomllib
 scene_file, size, spp, seed, out = sys.argv[sys.argv.index("--") + 1:]
 doc = tomllib.load(open(scene_file, "rb"))
 bpy.ops.wm.read_factory_settings(use_empty=True)
 s = bpy.context.scene
 for m in doc["mesh"]:
-    mesh = bpy.data.meshes.new(m["name"])
-    mesh.from_pydata([tuple(v) for v in m["vertices"]], [], [tuple(q) for q in m.get("quads", [])] +
-                     [tuple(t) for t in m.get("triangles", [])])
-    obj = bpy.data.objects.new(m["name"], mesh)
-    s.collection.objects.link(obj)
+    if "file" in m:  # a PLY, scaled then translated as clpt does (no rotation here)
+        bpy.ops.import_mesh.ply(filepath=os.path.join(os.path.dirname(scene_file), m["file"]))
+        obj = bpy.context.selected_objects[0]
+        obj.scale = (m.get("scale", 1.0),) * 3
+        obj.location = tuple(m.get("translate", (0.0, 0.0, 0.0)))
+        for poly in obj.data.polygons: poly.use_smooth = True
+        mesh = obj.data
+    else:
+        mesh = bpy.data.meshes.new(m["name"])
+        mesh.from_pydata([tuple(v) for v in m["vertices"]], [], [tuple(q) for q in m.get("quads", [])] +
+                         [tuple(t) for t in m.get("triangles", [])])
+        obj = bpy.data.objects.new(m["name"], mesh)
+        s.collection.objects.link(obj)
     mat = bpy.data.materials.new(m["name"]); mat.use_nodes = True
     nodes = mat.node_tree.nodes; nodes.clear()
     output = nodes.new("ShaderNodeOutputMaterial")
@@ -61,6 +69,7 @@ for m in doc["mesh"]:
     else:
         sys.exit("cycles_speed_check.py: material type " + spec["type"] + " is not translated")
     mat.node_tree.links.new(shader.outputs[0], output.inputs["Surface"])
+    mesh.materials.clear()
     mesh.materials.append(mat)
 cam_doc = doc["camera"]
 camera = bpy.data.cameras.new("camera")
@@ -92,6 +101,51 @@ bpy.ops.render.render(write_still=True)
 '''
 
 
+def ply_bounds(path):
+    """The lower and upper corners of a binary little-endian PLY's vertices (x, y, z first)."""
+    with open(path, "rb") as f:
+        header = b""
+        while not header.endswith(b"end_header\n"):
+            line = f.readline()
+            if not line:
+                sys.exit(f"cycles_speed_check.py: {path}: no end_header")
+            header += line
+        lines = header.decode("ascii").splitlines()
+        if "format binary_little_endian 1.0" not in lines:
+            sys.exit(f"cycles_speed_check.py: {path}: not a binary little-endian PLY")
+        count = next(int(l.split()[2]) for l in lines if l.startswith("element vertex"))
+        start = next(i for i, l in enumerate(lines) if l.startswith("element vertex"))
+        props = []
+        for l in lines[start + 1:]:
+            if l.startswith("element") or l == "end_header":
+                break
+            props.append(l.split())
+        if [p[2] for p in props[:3]] != ["x", "y", "z"] or any(p[:2] != ["property", "float"] for p in props):
+            sys.exit(f"cycles_speed_check.py: {path}: expected vertices of float properties, x, y, z first")
+        v = np.frombuffer(f.read(count * 4 * len(props)), dtype="<f4").reshape(count, len(props))[:, :3]
+    return v.min(0).astype(float), v.max(0).astype(float)
+
+
+def scene_with_mesh(work, ply):
+    """scenes/cornell-box.toml without its two blocks (its last two meshes) and with the PLY in their
+    place: 250 mm across, on the floor at the box's middle."""
+    lo, hi = ply_bounds(ply)
+    scale = 250.0 / float((hi - lo).max())
+    centre = (lo + hi) / 2
+    translate = [278.0 - scale * centre[0], 20.0 - scale * lo[1], 280.0 - scale * centre[2]]
+    path = os.path.join(work, "cornell-box-" + os.path.splitext(os.path.basename(ply))[0] + ".toml")
+    box = open(SCENE).read()
+    cut = box.find('[[mesh]]\nname = "short_block"')
+    if cut < 0:
+        sys.exit(f"cycles_speed_check.py: {SCENE}: no short_block mesh to replace")
+    text = box[:cut] + (
+        f'[[mesh]]\nname = "inside"\nfile = "{os.path.abspath(ply)}"\nscale = {scale!r}\n'
+        f"translate = [{translate[0]!r}, {translate[1]!r}, {translate[2]!r}]\n"
+        'material = { type = "lambertian", reflectance = [0.7, 0.5, 0.3] }\n')
+    open(path, "w").write(text)
+    return path
+
+
 def load(path):
     image = oiio.ImageInput.open(path)
     if image is None:
@@ -112,18 +166,20 @@ def main():
     parser.add_argument("--target", type=float, default=0.01, help="RMSE to compare the times at")
     parser.add_argument("--repeat", type=int, default=2, help="runs of each count, alternating renderers")
     parser.add_argument("--clpt-args", default="--sampler sobol", help="more arguments to clpt render")
+    parser.add_argument("--mesh", help="a binary PLY (e.g. scenes/meshes/torus_knot.ply) put in the box")
     args = parser.parse_args()
     os.makedirs(args.work, exist_ok=True)
+    scene = scene_with_mesh(args.work, args.mesh) if args.mesh else SCENE
     blender_side = os.path.join(args.work, "cycles_side.py")
     open(blender_side, "w").write(BLENDER_SIDE)
     counts = [int(n) for n in args.spp.split(",")]
 
     def render(who, spp, seed, out):
         if who == "clpt":
-            command = [args.clpt, "render", SCENE, "--width", str(args.size), "--height", str(args.size),
+            command = [args.clpt, "render", scene, "--width", str(args.size), "--height", str(args.size),
                        "--spp", str(spp), "--seed", str(seed), "-q", "-o", out] + args.clpt_args.split()
         else:
-            command = ["blender", "-b", "--python", blender_side, "--", SCENE, str(args.size), str(spp), str(seed), out]
+            command = ["blender", "-b", "--python", blender_side, "--", scene, str(args.size), str(spp), str(seed), out]
         start = time.monotonic()
         subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
         return time.monotonic() - start
