@@ -301,16 +301,16 @@ struct Builder {
     }
   }
 
-  // The best binned split of [begin, end) of box `box`: returns the position of the first
-  // primitive of the right side after partitioning, or `begin` when no split beats a leaf (or none
-  // exists); sets the two sides' boxes when it splits by the SAH.
-  // `centre_box` is the box of the range's centroids; the sides' centroid boxes are set with theirs.
   // The SAH's cost of testing n primitives: one per group of options.leaf_group.
   double leaf_cost(size_t n) const {
     const size_t group = size_t(options.leaf_group);
     return double((n + group - 1) / group);
   }
 
+  // The best binned split of [begin, end) of box `box`: returns the position of the first
+  // primitive of the right side after partitioning, or `begin` when no split beats a leaf (or none
+  // exists); sets the two sides' boxes when it splits by the SAH.
+  // `centre_box` is the box of the range's centroids; the sides' centroid boxes are set with theirs.
   size_t split(size_t begin, size_t end, const BvhBox& box, const BvhBox& centre_box, BvhBox& left_box,
                BvhBox& right_box, BvhBox& left_centres, BvhBox& right_centres) {
     const size_t count = end - begin;
