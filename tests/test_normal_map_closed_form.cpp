@@ -16,17 +16,14 @@
 #include <cmath>
 #include <functional>
 
-#include "device_test_util.h"
-#include "mesh_test_util.h"
+#include "plane_closed_form.h"
 #include "render_test_util.h"
 
 namespace clpt::test {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr int kSize = 24;        // pixels per side
-constexpr double kHeight = 6.0;  // the orthographic sensor's side, world units
-constexpr double kAlbedo = 0.6;
+constexpr int kSize = kPlaneImageSize;
 
 using Normal = std::array<double, 3>;
 
@@ -58,21 +55,11 @@ struct Plane {
   double tangent_w = 0;
 };
 Scene plane_scene(const Plane& p, const PunctualLight& light) {
-  Scene scene;
-  scene.file = "normal_map_closed_form";
-  scene.camera.position = {0, 5, 0};
-  scene.camera.look_at = {0, 0, 0};
-  scene.camera.up = {0, 0, -1};
-  scene.camera.projection = Projection::Orthographic;
-  scene.camera.ortho_height = kHeight;
-  TriangleMesh plane;
-  plane.name = "plane";
-  plane.positions = {{-20, 0, -20}, {20, 0, -20}, {20, 0, 20}, {-20, 0, 20}};
-  plane.triangles = {{0, 2, 1}, {0, 3, 2}};
+  Scene scene = lit_plane_scene("normal_map_closed_form");
+  TriangleMesh& plane = scene.meshes.back();
   for (const Vec3& q : plane.positions)
     plane.uvs.push_back({(q[0] + 20) / 40, ((p.mirrored_uvs ? q[2] : -q[2]) + 20) / 40});
   if (p.tangent_w != 0) plane.tangents.assign(4, {1, 0, 0, p.tangent_w});
-  plane.material = lambertian(kAlbedo);
   TextureImage image;
   image.file = "tilt";
   image.width = image.height = 2;
@@ -83,10 +70,7 @@ Scene plane_scene(const Plane& p, const PunctualLight& light) {
   scene.images.push_back(image);
   plane.material.textures.normal.image = 0;
   plane.material.textures.normal.where = "plane.material.normal_map";
-  scene.meshes.push_back(plane);
   scene.lights.push_back(light);
-  scene.settings.estimator = "nee";
-  scene.settings.max_bounces = 2;
   return scene;
 }
 
@@ -116,99 +100,14 @@ double point_irradiance(const PunctualLight& l, const Normal& n, double x, doubl
   return l.intensity[0] * cos_shading / (d2 * std::sqrt(d2));
 }
 
-// Radiance of each pixel (row-major) for irradiance e(x, z), the pixel's brightest point, and
-// whether the lit region's edge crosses the pixel (there only 0 <= mean <= brightest is checked:
-// the pixel's samples may all miss its lit part, and its variance estimate says nothing).
-struct Expected {
-  std::vector<double> mean, brightest;
-  std::vector<bool> edge;
-};
-Expected expected_image(const std::function<double(double, double)>& irradiance) {
-  Expected out{std::vector<double>(kSize * kSize), std::vector<double>(kSize * kSize), std::vector<bool>(kSize * kSize)};
-  constexpr int kSub = 16;
-  for (int row = 0; row < kSize; ++row)
-    for (int col = 0; col < kSize; ++col) {
-      double sum = 0, lo = 1e300, hi = 0;
-      for (int a = 0; a < kSub; ++a)
-        for (int b = 0; b < kSub; ++b) {
-          const double fx = (col + (a + 0.5) / kSub) / kSize;
-          const double fy = (kSize - 1 - row + (b + 0.5) / kSub) / kSize;
-          const double e = irradiance((fx - 0.5) * kHeight, -(fy - 0.5) * kHeight);
-          sum += e, lo = std::min(lo, e), hi = std::max(hi, e);
-        }
-      const int i = row * kSize + col;
-      out.mean[i] = kAlbedo / kPi * sum / (kSub * kSub);
-      out.brightest[i] = kAlbedo / kPi * hi;
-      out.edge[i] = lo == 0 && hi > 0;
-    }
-  return out;
-}
-
-struct Form {
-  const char* name;
-  ExecutionForm form;
-  bool generic;
-};
-constexpr Form kMegakernel{"megakernel", ExecutionForm::Megakernel, false};
-constexpr Form kForms[] = {kMegakernel,
-                           {"wavefront", ExecutionForm::Wavefront, false},
-                           {"generic megakernel", ExecutionForm::Megakernel, true}};
-
-struct Rendered {
-  std::vector<float> mean, variance;
-};
-Rendered render(const Scene& base, const Form& f, uint64_t seed) {
-  Scene scene = base;
-  scene.settings.width = scene.settings.height = kSize;
-  scene.settings.spp = 32;
-  scene.settings.seed = seed;
-  RenderRequest request;
-  request.use_kernel_cache = false;
-  request.scene = scene;
-  request.form = f.form;
-  request.generic_kernel = f.generic;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
-  RenderReport report;
-  const Film film = run_render(request, report);
-  return {film.mean_rgb(), film.variance_rgb()};
-}
-
-// Every pixel of `image` against `expected`, z of its own variance (Sidak over `comparisons`)
-// plus float rounding; pixels the lit region's edge crosses only within [0, brightest]; pixels
-// the closed form says are dark exactly 0. Returns how many lit pixels were checked.
-int expect_matches(const Rendered& image, const Expected& expected, int comparisons) {
-  const double z = sidak_z(comparisons);
-  int bad = 0, checked = 0;
-  for (int i = 0; i < kSize * kSize; ++i) {
-    const double m = image.mean[3 * i], e = expected.mean[i];
-    if (e == 0) {
-      if (m != 0.0 && bad++ < 5) ADD_FAILURE() << "pixel " << i % kSize << "," << i / kSize << ": " << m << ", expected 0";
-      continue;
-    }
-    if (expected.edge[i]) {
-      if ((m < 0 || m > expected.brightest[i] * (1 + 1e-4)) && bad++ < 5)
-        ADD_FAILURE() << "pixel " << i % kSize << "," << i / kSize << " (on the lit region's edge): " << m
-                      << " outside [0, " << expected.brightest[i] << "]";
-      continue;
-    }
-    const double tolerance = z * std::sqrt(double(image.variance[3 * i])) + 2e-4 * e + 1e-7;
-    if (std::fabs(m - e) > tolerance && bad++ < 5)
-      ADD_FAILURE() << "pixel " << i % kSize << "," << i / kSize << ": " << m << " expected " << e << " +- " << tolerance;
-    ++checked;
-  }
-  EXPECT_EQ(bad, 0) << "pixels off the closed form";
-  return checked;
-}
-
 // The pixel (row-major) of the closed form's brightest point: where the highlight is.
-int brightest_pixel(const Expected& e) {
+int brightest_pixel(const PlaneExpected& e) {
   return int(std::max_element(e.mean.begin(), e.mean.end()) - e.mean.begin());
 }
 
 // How many pixels two closed forms put further apart than `margin` relative: a check that can
 // tell them apart (the tilt and its mirror, the two handednesses) must find many.
-int pixels_apart(const Expected& a, const Expected& b, double margin) {
+int pixels_apart(const PlaneExpected& a, const PlaneExpected& b, double margin) {
   int n = 0;
   for (int i = 0; i < kSize * kSize; ++i) n += std::fabs(a.mean[i] - b.mean[i]) > margin * std::max(a.mean[i], b.mean[i]);
   return n;
@@ -217,22 +116,22 @@ int pixels_apart(const Expected& a, const Expected& b, double margin) {
 const PunctualLight kLight = point_light({0.4, 1.5, -0.3}, 3.0);
 const Tilt kTilt = tilt(40, 70);  // 40 degrees, mostly towards the bitangent, some towards the tangent
 
-Expected closed_form(const Tilt& map, double w, const PunctualLight& light) {
+PlaneExpected closed_form(const Tilt& map, double w, const PunctualLight& light) {
   const Normal n = world_normal(map.tangent_space, w);
-  return expected_image([&](double x, double z) { return point_irradiance(light, n, x, z); });
+  return expected_plane_image([&](double x, double z) { return point_irradiance(light, n, x, z); });
 }
 
 TEST(NormalMapClosedForm, TiltedMapMovesTheLightWhereTheClosedFormSays) {
-  const Expected expected = closed_form(kTilt, 1, kLight);
-  const Expected flat = expected_image([&](double x, double z) { return point_irradiance(kLight, {0, 1, 0}, x, z); });
+  const PlaneExpected expected = closed_form(kTilt, 1, kLight);
+  const PlaneExpected flat = expected_plane_image([&](double x, double z) { return point_irradiance(kLight, {0, 1, 0}, x, z); });
   // The tilt moves the brightest spot (by two pixels or more) and the terminator into the image.
   const int moved = brightest_pixel(expected), still = brightest_pixel(flat);
   EXPECT_GE(std::abs(moved % kSize - still % kSize) + std::abs(moved / kSize - still / kSize), 2);
   EXPECT_GT(std::count(expected.mean.begin(), expected.mean.end(), 0.0), kSize);
   const Scene scene = plane_scene({kTilt}, kLight);
-  for (const Form& f : kForms) {
+  for (const KernelForm& f : kPlaneForms) {
     SCOPED_TRACE(f.name);
-    EXPECT_GT(expect_matches(render(scene, f, 3), expected, kSize * kSize * int(std::size(kForms))), kSize * kSize / 4);
+    EXPECT_GT(expect_plane_matches(render_plane(scene, f, 32, 3), expected, kSize * kSize * int(std::size(kPlaneForms))), kSize * kSize / 4);
   }
 }
 
@@ -243,14 +142,14 @@ TEST(NormalMapClosedForm, OppositeTiltGivesTheMirroredImage) {
   opposite.texel[0] = kTilt.texel[0], opposite.tangent_space[0] = kTilt.tangent_space[0];  // x kept
   PunctualLight mirrored = kLight;
   mirrored.position[2] = -kLight.position[2];
-  const Expected expected = closed_form(opposite, 1, mirrored);
+  const PlaneExpected expected = closed_form(opposite, 1, mirrored);
   ASSERT_GT(pixels_apart(expected, closed_form(kTilt, 1, kLight), 0.2), kSize * kSize / 4);
-  const Rendered a = render(plane_scene({kTilt}, kLight), kMegakernel, 5);
-  const Rendered b = render(plane_scene({opposite}, mirrored), kMegakernel, 6);
-  EXPECT_GT(expect_matches(b, expected, kSize * kSize * 2), kSize * kSize / 4);
+  const PlaneImage a = render_plane(plane_scene({kTilt}, kLight), kMegakernelForm, 32, 5);
+  const PlaneImage b = render_plane(plane_scene({opposite}, mirrored), kMegakernelForm, 32, 6);
+  EXPECT_GT(expect_plane_matches(b, expected, kSize * kSize * 2), kSize * kSize / 4);
   const double z = sidak_z(kSize * kSize);
   int bad = 0;
-  const Expected first = closed_form(kTilt, 1, kLight);
+  const PlaneExpected first = closed_form(kTilt, 1, kLight);
   for (int row = 0; row < kSize; ++row)
     for (int col = 0; col < kSize; ++col) {
       const int i = row * kSize + col, j = (kSize - 1 - row) * kSize + col;
@@ -267,7 +166,7 @@ TEST(NormalMapClosedForm, OppositeTiltGivesTheMirroredImage) {
 // tangents (1, 0, 0, +-1) on the usual texture coordinates, and tangents generated from texture
 // coordinates whose v runs the other way (w = -1, the bitangent +z).
 TEST(NormalMapClosedForm, HandednessMirrorsTheBitangent) {
-  const Expected right = closed_form(kTilt, 1, kLight), left = closed_form(kTilt, -1, kLight);
+  const PlaneExpected right = closed_form(kTilt, 1, kLight), left = closed_form(kTilt, -1, kLight);
   ASSERT_GT(pixels_apart(right, left, 0.2), kSize * kSize / 4);  // the check tells them apart
   const int comparisons = kSize * kSize * 3;
   Plane given_right{kTilt}, given_left{kTilt}, generated_left{kTilt};
@@ -276,15 +175,15 @@ TEST(NormalMapClosedForm, HandednessMirrorsTheBitangent) {
   generated_left.mirrored_uvs = true;
   {
     SCOPED_TRACE("given tangents, w = +1");
-    EXPECT_GT(expect_matches(render(plane_scene(given_right, kLight), kMegakernel, 7), right, comparisons), kSize * kSize / 4);
+    EXPECT_GT(expect_plane_matches(render_plane(plane_scene(given_right, kLight), kMegakernelForm, 32, 7), right, comparisons), kSize * kSize / 4);
   }
   {
     SCOPED_TRACE("given tangents, w = -1");
-    EXPECT_GT(expect_matches(render(plane_scene(given_left, kLight), kMegakernel, 8), left, comparisons), kSize * kSize / 4);
+    EXPECT_GT(expect_plane_matches(render_plane(plane_scene(given_left, kLight), kMegakernelForm, 32, 8), left, comparisons), kSize * kSize / 4);
   }
   {
     SCOPED_TRACE("generated tangents, v along +z (w = -1)");
-    EXPECT_GT(expect_matches(render(plane_scene(generated_left, kLight), kMegakernel, 9), left, comparisons), kSize * kSize / 4);
+    EXPECT_GT(expect_plane_matches(render_plane(plane_scene(generated_left, kLight), kMegakernelForm, 32, 9), left, comparisons), kSize * kSize / 4);
   }
 }
 
@@ -296,11 +195,11 @@ TEST(NormalMapClosedForm, HandednessMirrorsTheBitangent) {
 // cosine alone would light it (0.6 / pi 2 0.72 = 0.275).
 TEST(NormalMapClosedForm, HouseRuleMapSeenFromBehindAndLightFromBelow) {
   const Tilt behind = tilt(120, 90);
-  const Expected flat = expected_image([&](double x, double z) { return point_irradiance(kLight, {0, 1, 0}, x, z); });
+  const PlaneExpected flat = expected_plane_image([&](double x, double z) { return point_irradiance(kLight, {0, 1, 0}, x, z); });
   ASSERT_GT(pixels_apart(flat, closed_form(behind, 1, kLight), 0.2), kSize * kSize / 4);
-  for (const Form& f : {kForms[0], kForms[2]}) {
+  for (const KernelForm& f : {kPlaneForms[0], kPlaneForms[2]}) {
     SCOPED_TRACE(std::string(f.name) + ", mapped normal seen from behind");
-    EXPECT_GT(expect_matches(render(plane_scene({behind}, kLight), f, 11), flat, kSize * kSize * 4), kSize * kSize / 2);
+    EXPECT_GT(expect_plane_matches(render_plane(plane_scene({behind}, kLight), f, 32, 11), flat, kSize * kSize * 4), kSize * kSize / 2);
   }
   PunctualLight below;
   below.name = "sun";
@@ -311,9 +210,9 @@ TEST(NormalMapClosedForm, HouseRuleMapSeenFromBehindAndLightFromBelow) {
   const Normal tilted = world_normal(tilt(60, 90).tangent_space, 1);
   const double cos_mapped = -(tilted[1] * below.direction[1] + tilted[2] * below.direction[2]);
   ASSERT_GT(cos_mapped, 0.7);  // the mapped normal faces the light
-  for (const Form& f : {kForms[0], kForms[2]}) {
+  for (const KernelForm& f : {kPlaneForms[0], kPlaneForms[2]}) {
     SCOPED_TRACE(std::string(f.name) + ", light from below the plane");
-    const Rendered image = render(plane_scene({tilt(60, 90)}, below), f, 12);
+    const PlaneImage image = render_plane(plane_scene({tilt(60, 90)}, below), f, 32, 12);
     EXPECT_EQ(*std::max_element(image.mean.begin(), image.mean.end()), 0.0f);
   }
 }
