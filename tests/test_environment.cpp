@@ -19,6 +19,7 @@
 #include "render_test_util.h"
 #include "scene/environment.h"
 #include "scene/environment_map.h"
+#include "stat_test_util.h"
 #include "util/temporary_directory.h"
 
 namespace clpt::test {
@@ -168,12 +169,6 @@ TEST(EnvironmentDistribution, AliasTablesDrawTheCdfsProbabilities) {
   EXPECT_EQ(words2[environment_header(words2).texel_offset + 5], 2 * (*e.rgb)[5]);
 }
 
-// Upper tail of the chi-square distribution (Wilson-Hilferty), as tests/test_sampling_chi2.cpp.
-double chi2_survival(double statistic, double dof) {
-  const double z = (std::cbrt(statistic / dof) - (1 - 2 / (9 * dof))) / std::sqrt(2 / (9 * dof));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
 // 1e6 device samples of a 16 x 8 sky with a sun at 1e5 x the sky, binned by texel and 2 x 2
 // quarters of it in (u, v) (uniform within a texel), against the host CDFs' probabilities; cells
 // expecting fewer than 5 pooled; alpha 0.01. And the density each sample returns is
@@ -208,23 +203,8 @@ TEST(EnvironmentSampling, DeviceSamplesMatchTheDistribution) {
   for (int cv = 0; cv < 2 * h; ++cv)
     for (int cu = 0; cu < 2 * w; ++cu)
       expected[size_t(cv) * 2 * w + cu] = d.texel_probability(size_t(cv / 2) * w + cu / 2) / 4 * kSamples;
-  double statistic = 0, pooled_obs = 0, pooled_exp = 0;
-  int cells = 0;
-  for (size_t i = 0; i < observed.size(); ++i) {
-    if (expected[i] < 5) {
-      pooled_obs += observed[i];
-      pooled_exp += expected[i];
-      continue;
-    }
-    statistic += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
-    ++cells;
-  }
-  if (pooled_exp > 0) {
-    statistic += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
-    ++cells;
-  }
-  const double p = chi2_survival(statistic, cells - 1);
-  EXPECT_GT(p, 0.01) << "chi2 " << statistic << " over " << cells << " cells";
+  const double p = chi2_pooled_p_value(observed, expected);
+  EXPECT_GT(p, 0.01) << "chi-square p-value of the samples against the host's CDFs";
 }
 
 // ---- orientation: camera rays in known directions see the marker's texels --------------------

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "device_test_util.h"
+#include "stat_test_util.h"
 
 namespace clpt::test {
 namespace {
@@ -153,11 +154,6 @@ struct Chi2Result {
   double integral, kept, p_value;
 };
 
-double chi2_survival(double statistic, double dof) {
-  const double z = (std::cbrt(statistic / dof) - (1 - 2 / (9 * dof))) / std::sqrt(2 / (9 * dof));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
 Chi2Result chi2_of(const Pbr& m, double cos_o, unsigned seed) {
   constexpr int kTheta = 40, kPhi = 80, kSub = 4;
   constexpr size_t kSamples = 1000000;
@@ -188,19 +184,8 @@ Chi2Result chi2_of(const Pbr& m, double cos_o, unsigned seed) {
     const int t = std::min(kTheta - 1, int((c + 1) / 2 * kTheta)), p = std::min(kPhi - 1, int(phi / (2 * kPi) * kPhi));
     observed[t * kPhi + p] += 1;
   }
-  double statistic = 0, pooled_o = 0, pooled_e = 0;
-  int cells = 0;
-  for (size_t i = 0; i < expected.size(); ++i) {
-    const double e = expected[i] * kSamples;
-    if (e < 5) {
-      pooled_o += observed[i], pooled_e += e;
-      continue;
-    }
-    statistic += (observed[i] - e) * (observed[i] - e) / e;
-    ++cells;
-  }
-  if (pooled_e > 0) statistic += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e, ++cells;
-  return {integral, kept / kSamples, chi2_survival(statistic, cells - 1)};
+  for (double& e : expected) e *= kSamples;
+  return {integral, kept / kSamples, chi2_pooled_p_value(observed, expected)};
 }
 
 TEST(PbrBsdf, SampledDirectionsFollowTheirDensity) {

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "device_test_util.h"
+#include "stat_test_util.h"
 
 namespace clpt::test {
 namespace {
@@ -29,12 +30,6 @@ std::vector<cl_float4> sample_directions(cl_uint mode, float exponent, cl_uint s
   return download<cl_float4>(out, kSamples);
 }
 
-// Upper tail of the chi-square distribution (Wilson-Hilferty; accurate for dof in the hundreds).
-double chi2_survival(double statistic, double dof) {
-  const double z = (std::cbrt(statistic / dof) - (1 - 2 / (9 * dof))) / std::sqrt(2 / (9 * dof));
-  return 0.5 * std::erfc(z / std::sqrt(2.0));
-}
-
 // mass_above(c): probability that cos(theta) >= c under the claimed pdf. Bins are uniform
 // in cos(theta) over [0, 1] and in phi; the pdf is rotationally symmetric around +z.
 double chi2_p_value(const std::vector<cl_float4>& dirs, const std::function<double(double)>& mass_above) {
@@ -51,23 +46,7 @@ double chi2_p_value(const std::vector<cl_float4>& dirs, const std::function<doub
     const double mass = mass_above(double(t) / kThetaBins) - mass_above(double(t + 1) / kThetaBins);
     for (int p = 0; p < kPhiBins; ++p) expected[t * kPhiBins + p] = mass / kPhiBins * kSamples;
   }
-  // Pool cells with small expectation into one.
-  double statistic = 0, pooled_obs = 0, pooled_exp = 0;
-  int cells = 0;
-  for (size_t i = 0; i < observed.size(); ++i) {
-    if (expected[i] < 5) {
-      pooled_obs += observed[i];
-      pooled_exp += expected[i];
-      continue;
-    }
-    statistic += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
-    ++cells;
-  }
-  if (pooled_exp > 0) {
-    statistic += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
-    ++cells;
-  }
-  return chi2_survival(statistic, cells - 1);
+  return chi2_pooled_p_value(observed, expected);  // cells expecting fewer than 5 pooled
 }
 
 double sidak_alpha() { return 1 - std::pow(1 - 0.01, 1.0 / kTestsInFile); }
