@@ -26,18 +26,8 @@ struct Rendered {
 };
 
 Rendered render(const Extreme& e, const ExtremeRun& run) {
-  Scene scene = e.scene;
-  scene.settings.width = e.width;
-  scene.settings.height = e.height;
-  scene.settings.spp = e.spp;
-  scene.settings.seed = run.seed;
-  scene.settings.sampler = Sampler::Jitter;
-  RenderRequest request;
-  request.scene = scene;
+  RenderRequest request = test_request(e.scene, e.width, e.height, e.spp, run.seed, Sampler::Jitter);
   request.precision = run.precision;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   if (e.megakernel) {
     request.form = ExecutionForm::Megakernel;
     request.launch_target_s = 0;  // one launch per pass

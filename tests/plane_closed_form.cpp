@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include "mesh_test_util.h"
 #include "render_test_util.h"
@@ -56,18 +55,10 @@ PlaneExpected expected_plane_image(const std::function<double(double, double)>& 
   return out;
 }
 
-PlaneImage render_plane(const Scene& base, const KernelForm& f, int64_t spp, uint64_t seed) {
-  Scene scene = base;
-  scene.settings.width = scene.settings.height = kPlaneImageSize;
-  scene.settings.spp = spp;
-  scene.settings.seed = seed;
-  RenderRequest request;
-  request.use_kernel_cache = false;
-  request.scene = scene;
+PlaneImage render_plane(const Scene& scene, const KernelForm& f, int64_t spp, uint64_t seed) {
+  RenderRequest request = test_request(scene, kPlaneImageSize, kPlaneImageSize, spp, seed);
   request.form = f.form;
   request.generic_kernel = f.generic;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   RenderReport report;
   const Film film = run_render(request, report);
   return {film.mean_rgb(), film.variance_rgb()};

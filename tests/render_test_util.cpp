@@ -13,20 +13,26 @@
 
 namespace clpt::test {
 
-TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed, Sampler sampler,
-                           Precision precision, bool adaptive) {
+RenderRequest test_request(Scene scene, int width, int height, int64_t spp, uint64_t seed,
+                           std::optional<Sampler> sampler) {
   scene.settings.width = width;
   scene.settings.height = height;
   scene.settings.spp = spp;
   scene.settings.seed = seed;
-  scene.settings.sampler = sampler;
+  if (sampler) scene.settings.sampler = *sampler;
   RenderRequest request;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  request.scene = scene;
-  request.precision = precision;
-  request.adaptive = adaptive;
+  request.use_kernel_cache = false;
+  request.scene = std::move(scene);
   const char* device = std::getenv("CLPT_TEST_DEVICE");
   request.device = device ? device : "cpu";
+  return request;
+}
+
+TestRender render_for_test(Scene scene, int width, int height, int64_t spp, uint64_t seed, Sampler sampler,
+                           Precision precision, bool adaptive) {
+  RenderRequest request = test_request(std::move(scene), width, height, spp, seed, sampler);
+  request.precision = precision;
+  request.adaptive = adaptive;
   RenderReport report;
   Film film = run_render(request, report);
   return {std::move(film), report};
@@ -59,16 +65,9 @@ double sidak_z(int comparisons, double family_alpha) {
 }
 
 RenderRequest scene_request(const std::string& scene_name, int width, int height, uint64_t seed, Sampler sampler) {
-  RenderRequest request;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  request.scene = load_book_scene(scene_name);
-  request.scene.settings.width = width;
-  request.scene.settings.height = height;
-  request.scene.settings.seed = seed;
-  request.scene.settings.sampler = sampler;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
-  return request;
+  Scene scene = load_book_scene(scene_name);
+  const int64_t spp = scene.settings.spp;
+  return test_request(std::move(scene), width, height, spp, seed, sampler);
 }
 
 std::vector<float> render_book_variant(const std::string& scene_name, uint64_t seed,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,12 @@
 #include "scene/scene.h"
 
 namespace clpt::test {
+
+// `scene` at width x height, `spp` samples a pixel, `seed` (and `sampler`, where given) as the tests
+// render it: clpt's kernel cache off (the kernels under test compiled from source), on the test
+// device (CLPT_TEST_DEVICE, else "cpu"). Callers set what they vary (form, precision...) on it.
+RenderRequest test_request(Scene scene, int width, int height, int64_t spp, uint64_t seed,
+                           std::optional<Sampler> sampler = std::nullopt);
 
 struct TestRender {
   Film film;

@@ -90,19 +90,10 @@ Scene wall_and_sphere() {
 
 Film render_aovs(Scene scene, Sampler sampler, ExecutionForm form = ExecutionForm::Megakernel, bool aovs = true,
                  int64_t spp = 16, bool adaptive = false) {
-  RenderRequest request;
-  request.use_kernel_cache = false;
-  scene.settings.width = kWidth;
-  scene.settings.height = kHeight;
-  scene.settings.spp = spp;
-  scene.settings.seed = 5;
-  scene.settings.sampler = sampler;
-  request.scene = scene;
+  RenderRequest request = test_request(std::move(scene), kWidth, kHeight, spp, 5, sampler);
   request.form = form;
   request.adaptive = adaptive;
   request.aovs.albedo = request.aovs.normal = request.aovs.depth = aovs;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   RenderReport report;
   return run_render(request, report);
 }

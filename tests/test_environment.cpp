@@ -61,18 +61,10 @@ Environment sky(int w, int h, double sun_ratio, double sun_degrees = 6) {
 RenderReport last_report;
 Film render(Scene scene, int w, int h, int64_t spp, uint64_t seed, std::optional<ExecutionForm> form = {},
             Precision precision = Precision::Robust, bool generic = false) {
-  scene.settings.width = w;
-  scene.settings.height = h;
-  scene.settings.spp = spp;
-  scene.settings.seed = seed;
-  RenderRequest request;
-  request.use_kernel_cache = false;
-  request.scene = scene;
+  RenderRequest request = test_request(std::move(scene), w, h, spp, seed);
   request.precision = precision;
   request.form = form;
   request.generic_kernel = generic;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   return run_render(request, last_report);
 }
 

@@ -13,15 +13,7 @@ namespace clpt::test {
 namespace {
 
 RenderRequest small_request(ExecutionForm form, Sampler sampler, int64_t spp) {
-  RenderRequest request;
-  request.scene = load_book_scene("glass");
-  request.scene.settings.width = 64;
-  request.scene.settings.height = 48;
-  request.scene.settings.spp = spp;
-  request.scene.settings.seed = 5;
-  request.scene.settings.sampler = sampler;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
+  RenderRequest request = test_request(load_book_scene("glass"), 64, 48, spp, 5, sampler);
   request.form = form;
   return request;
 }

@@ -97,14 +97,9 @@ TEST(PbrRender, FormsAgreeOnTheMaterialSweep) {
                               FormCase{"generic", ExecutionForm::Megakernel, true}}) {
       Scene scene = sweep_scene();
       scene.settings.estimator = estimator;
-      scene.settings.width = 32, scene.settings.height = 24, scene.settings.spp = 16, scene.settings.seed = 9;
-      RenderRequest request;
-      request.use_kernel_cache = false;
-      request.scene = scene;
+      RenderRequest request = test_request(std::move(scene), 32, 24, 16, 9);
       request.form = f.form;
       request.generic_kernel = f.generic;
-      const char* device = std::getenv("CLPT_TEST_DEVICE");
-      request.device = device ? device : "cpu";
       RenderReport report;
       images.push_back(run_render(request, report).mean_rgb());
     }

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -65,17 +64,9 @@ Scene globe_scene(const std::string& dir, const Vec3& from, const Vec3& up) {
   return load_scene_string(text, dir + "/globe.toml");
 }
 
-Film render(Scene scene, ExecutionForm form, int size, int64_t spp, uint64_t seed) {
-  scene.settings.width = size;
-  scene.settings.height = size;
-  scene.settings.spp = spp;
-  scene.settings.seed = seed;
-  RenderRequest request;
-  request.use_kernel_cache = false;  // tests compile the kernels under test from source
-  request.scene = scene;
+Film render(const Scene& scene, ExecutionForm form, int size, int64_t spp, uint64_t seed) {
+  RenderRequest request = test_request(scene, size, size, spp, seed);
   request.form = form;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   RenderReport report;
   return run_render(request, report);
 }
@@ -358,14 +349,8 @@ TEST(SphereTextures, BesideAVertexColouredMesh) {
   scene.meshes.push_back(mesh);
   constexpr int size = 11, centre = 5;
   for (bool generic : {false, true}) {
-    scene.settings.width = scene.settings.height = size;
-    scene.settings.spp = 4;
-    RenderRequest request;
-    request.use_kernel_cache = false;
-    request.scene = scene;
+    RenderRequest request = test_request(scene, size, size, 4, scene.settings.seed);
     request.generic_kernel = generic;
-    const char* device = std::getenv("CLPT_TEST_DEVICE");
-    request.device = device ? device : "cpu";
     RenderReport report;
     const std::vector<float> mean = run_render(request, report).mean_rgb();
     const std::string k = generic ? "generic: " : "specialised: ";

@@ -239,19 +239,10 @@ const Way kWays[] = {
     {"generic megakernel", ExecutionForm::Megakernel, true},
 };
 
-MeanVarianceImage render(Scene scene, const Way& way, int size, int64_t spp, uint64_t seed) {
-  scene.settings.width = size;
-  scene.settings.height = size;
-  scene.settings.spp = spp;
-  scene.settings.seed = seed;
-  scene.settings.sampler = Sampler::Jitter;
-  RenderRequest request;
-  request.use_kernel_cache = false;
-  request.scene = scene;
+MeanVarianceImage render(const Scene& scene, const Way& way, int size, int64_t spp, uint64_t seed) {
+  RenderRequest request = test_request(scene, size, size, spp, seed, Sampler::Jitter);
   request.form = way.form;
   request.generic_kernel = way.generic;
-  const char* device = std::getenv("CLPT_TEST_DEVICE");
-  request.device = device ? device : "cpu";
   RenderReport report;
   return run_render(request, report).mean_variance();
 }
