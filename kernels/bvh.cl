@@ -37,6 +37,13 @@
 #ifndef CLPT_HAS_TRIANGLE_LIGHTS
 #define CLPT_HAS_TRIANGLE_LIGHTS 1
 #endif
+/* The node the traversal starts at: 1 in a kernel whose triangle loop (CLPT_TRIANGLE_COUNT) tests
+ * the meshes of large triangles beside the hierarchy: node 1 roots the hierarchy of the others,
+ * the root's other subtree holds the loop's (kernel_options.cpp; DeviceScene::loop_triangles).
+ * Else the root. */
+#ifndef CLPT_BVH_ROOT
+#define CLPT_BVH_ROOT 0
+#endif
 
 /* Every buffer that holds geometry (and the lights, and the environment), as the kernels receive them. */
 typedef struct SceneBuffers {
@@ -260,7 +267,7 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
   const ShearedRay ray = sheared_ray(o, d);
   uint stack[CLPT_BVH_STACK];
   uint depth = 0u;
-  uint node = 0u;   /* the node to open, when `open` */
+  uint node = CLPT_BVH_ROOT; /* the node to open, when `open` */
   bool open = true; /* false: the entry `ref` just came off the stack */
   uint ref = 0u;
   bool done = false;

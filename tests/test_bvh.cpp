@@ -166,6 +166,8 @@ std::vector<BvhBuilder> builders_here() {
 // until 4); every child box contains its subtree (an interior child's box holds all its node's
 // child boxes, a leaf's box its triangles' vertices and its spheres' centres); every primitive
 // is in exactly one leaf; the stack the tree can need is recomputed and within CLPT_BVH_STACK.
+// Some of the scenes have meshes of large triangles beside others (a floor, a mirror box): there
+// the root holds the two subtrees of graft_loop_tree.
 TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
   for (BvhBuilder builder : builders_here())
   for (const Scene& scene : comparison_scenes()) {
@@ -243,7 +245,8 @@ TEST(BvhBuild, EveryPrimitiveInOneLeafAndBoxesNest) {
         }
       }
       EXPECT_GE(used, 1);
-      if (used < CLPT_BVH_WIDTH) {
+      // Not the root above a triangle loop's meshes (graft_loop_tree): its two subtrees by design.
+      if (used < CLPT_BVH_WIDTH && !(i == 0 && ds.loop_triangles > 0)) {
         EXPECT_EQ(interior, 0) << "node " << i << " could have opened an interior child";
       }
       need[i] = used - 1 + deepest;

@@ -277,13 +277,23 @@ TEST(FormRule, PicksTheWavefrontOnCpusForMeshOnlyScenes) {
   EXPECT_EQ(scene_geometry(sphere_tree), SceneGeometry::SphereHierarchy);
   EXPECT_EQ(scene_geometry(mesh_in_room), SceneGeometry::MeshesAndSpheres);
   EXPECT_EQ(scene_geometry(mesh_only), SceneGeometry::MeshesOnly);
+  KernelFeatures walls_and_model = mesh_only;  // the loop's meshes of large triangles beside a hierarchy
+  walls_and_model.loop_triangles = 12;
+  walls_and_model.hierarchy_triangles = true;
+  EXPECT_EQ(scene_geometry(walls_and_model), SceneGeometry::LoopMeshesAndHierarchy);
+  KernelFeatures all_in_loop = walls_and_model;  // the Cornell box: every triangle in the loop
+  all_in_loop.loop_triangles = 32;
+  all_in_loop.hierarchy_triangles = false;
+  EXPECT_EQ(scene_geometry(all_in_loop), SceneGeometry::MeshesOnly);
   const DeviceInfo cpu = device_of(true), gpu = device_of(false);
   EXPECT_EQ(default_form_for(cpu, spheres).form, ExecutionForm::Megakernel);
   EXPECT_EQ(default_form_for(cpu, sphere_tree).form, ExecutionForm::Megakernel);
   EXPECT_EQ(default_form_for(cpu, mesh_in_room).form, ExecutionForm::Megakernel);
   EXPECT_EQ(default_form_for(cpu, mesh_only).form, ExecutionForm::Wavefront);
   EXPECT_NE(default_form_for(cpu, mesh_only).reason.find("meshes only"), std::string::npos);
-  for (const KernelFeatures& f : {spheres, sphere_tree, mesh_in_room, mesh_only})
+  EXPECT_EQ(default_form_for(cpu, walls_and_model).form, ExecutionForm::Megakernel);
+  EXPECT_EQ(default_form_for(cpu, all_in_loop).form, ExecutionForm::Wavefront);
+  for (const KernelFeatures& f : {spheres, sphere_tree, mesh_in_room, mesh_only, walls_and_model})
     EXPECT_EQ(default_form_for(gpu, f).form, ExecutionForm::Megakernel);
 }
 

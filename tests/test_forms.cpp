@@ -11,6 +11,8 @@
 #include "mesh_test_util.h"
 #include "kernels/kernel_options.h"
 #include "render_test_util.h"
+#include "render/render_plan.h"
+#include "scene/device_scene.h"
 #include "scene/loop_spheres.h"
 #include "scene/scene_loader.h"
 
@@ -313,6 +315,163 @@ TEST(TriangleLoop, EqualsTheHierarchy) {
     });
   };
   expect_same_image(room(false), room(true));
+}
+
+// The Cornell box with its two blocks replaced by a tessellated ball of 768 small triangles: its
+// walls, floor and ceiling (10 triangles, five meshes, each triangle over 100 times the median's
+// area) go to the triangle loop beside a hierarchy of the ball's and the light's (loop_meshes).
+Scene box_with_ball(Scene scene) {
+  std::vector<TriangleMesh> kept;
+  for (const TriangleMesh& m : scene.meshes)
+    if (m.name != "short_block" && m.name != "tall_block") kept.push_back(m);
+  scene.meshes = kept;
+  scene.meshes.push_back(tessellated_sphere({280, 120, 280}, 110, 16, 24, lambertian(0.6), true));
+  return scene;
+}
+
+TEST(TriangleLoop, MeshesOfLargeTrianglesStayInTheLoopBesideTheHierarchy) {
+  const Scene scene = box_with_ball(load_book_scene("cornell-box"));
+  const std::vector<bool> in_loop = loop_meshes(scene);
+  ASSERT_EQ(in_loop.size(), 7u);
+  for (size_t i = 0; i < 7; ++i)
+    EXPECT_EQ(in_loop[i], scene.meshes[i].name != "light" && scene.meshes[i].name != "tessellated sphere") << scene.meshes[i].name;
+  EXPECT_EQ(loop_triangle_count(scene), 10);
+  EXPECT_TRUE(hierarchy_triangles(scene));
+
+  KernelFeatures f = features_for_scene(scene);
+  f.cpu_vector_lanes = 16;
+  f.unroll_scene_loops = true;
+  EXPECT_TRUE(f.loop_beside_hierarchy());
+  const std::string options = kernel_build_options(f);
+  EXPECT_NE(options.find("-DCLPT_TRIANGLE_COUNT=10"), std::string::npos);
+  EXPECT_NE(options.find("-DCLPT_HAS_BVH=1"), std::string::npos);
+  EXPECT_NE(options.find("-DCLPT_BVH_ROOT=1"), std::string::npos);
+  f.unroll_scene_loops = false;  // the GPUs' shape: the whole hierarchy from its root
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_BVH_ROOT"), std::string::npos);
+  EXPECT_EQ(kernel_build_options(f).find("CLPT_TRIANGLE_COUNT"), std::string::npos);
+
+  // The device scene: the loop's triangles first (the five meshes' 10, told by their size), the
+  // root's slot 0 the hierarchy of the others from node 1, its slot 1 that of the loop's.
+  const DeviceScene ds = make_device_scene(scene, 64, 64);
+  ASSERT_EQ(ds.loop_triangles, 10u);
+  for (uint32_t i = 0; i < ds.triangles.size(); ++i) {
+    const GpuTriangle& t = ds.triangles[i];
+    const double e1[3] = {double(t.v1[0]) - t.v0[0], double(t.v1[1]) - t.v0[1], double(t.v1[2]) - t.v0[2]};
+    const double e2[3] = {double(t.v2[0]) - t.v0[0], double(t.v2[1]) - t.v0[1], double(t.v2[2]) - t.v0[2]};
+    const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    const double area = 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    EXPECT_EQ(i < 10, area > 1e5) << i << ": area " << area;  // a wall's half: about 550 x 550 / 2
+  }
+  const GpuBvhNode& root = ds.bvh.nodes.at(0);
+  EXPECT_EQ(root.count[0], 0u);
+  EXPECT_EQ(root.child[0], 1u);
+  EXPECT_EQ(root.count[1], 0u);
+  // Each subtree's leaves: exactly the triangles of its side, each once.
+  const auto leaves_of = [&](uint32_t start) {
+    std::vector<int> seen(ds.triangles.size(), 0);
+    std::vector<uint32_t> todo{start};
+    while (!todo.empty()) {
+      const GpuBvhNode& n = ds.bvh.nodes.at(todo.back());
+      todo.pop_back();
+      for (int k = 0; k < CLPT_BVH_WIDTH; ++k) {
+        if (!(n.lower_x[k] <= n.upper_x[k])) continue;
+        if (n.count[k] == 0u) {
+          todo.push_back(n.child[k]);
+        } else {
+          for (uint32_t t = n.child[k]; t < n.child[k] + (n.count[k] & CLPT_BVH_COUNT_MASK); ++t) ++seen.at(t);
+        }
+      }
+    }
+    return seen;
+  };
+  const std::vector<int> rest = leaves_of(1), loop = leaves_of(root.child[1]);
+  for (size_t t = 0; t < ds.triangles.size(); ++t) {
+    EXPECT_EQ(rest[t], t < 10 ? 0 : 1) << t;
+    EXPECT_EQ(loop[t], t < 10 ? 1 : 0) << t;
+  }
+
+  // The plan: the lockstep megakernel keeps the loop beside the hierarchy (the rule's choice on a
+  // CPU), the wavefront traverses everything (its intersect stage would run the loop scalar).
+  RenderRequest request;
+  request.scene = scene;
+  const DeviceInfo& device = test_device().device();
+  const RenderPlan plan = plan_render(request, {device});
+  if (device.is_cpu) {
+    EXPECT_EQ(plan.devices.front().form, ExecutionForm::Megakernel);
+  }
+  request.form = ExecutionForm::Wavefront;
+  const RenderPlan wavefront = plan_render(request, {device});
+  EXPECT_FALSE(wavefront.devices.front().features.loop_beside_hierarchy());
+  EXPECT_EQ(kernel_build_options(wavefront.devices.front().features).find("CLPT_BVH_ROOT"), std::string::npos);
+
+  // The same image, same seed: the loop and the hierarchy below it (lockstep megakernel), the
+  // whole hierarchy (rolled scene loops; the wavefront; the generic kernel).
+  const auto render = [](const Variant& v) {
+    return render_book_variant("cornell-box", 77, [&](RenderRequest& r) {
+      r.scene = box_with_ball(r.scene);
+      r.scene.settings.spp = 16;
+      r.form = v.form;
+      r.generic_kernel = v.generic;
+      r.megakernel_loop = v.loop;
+      r.scene_loops = v.scene_loops;
+    });
+  };
+  Variant loop_variant, whole;
+  loop_variant.loop = whole.loop = MegakernelLoop::Lockstep;
+  whole.scene_loops = SceneLoops::Rolled;
+  const std::vector<float> with_loop = render(loop_variant);
+  expect_same_image(with_loop, render(whole));
+  expect_same_image(with_loop, render({ExecutionForm::Wavefront}));
+  Variant generic;
+  generic.generic = true;
+  expect_same_image(with_loop, render(generic));
+}
+
+// Only meshes of large triangles go to the loop, whole, while it has room: a scene of similar
+// triangles has none there; a mesh too large for the loop's room stays in the hierarchy; with the
+// spheres in the hierarchy, no mesh is in the loop.
+TEST(TriangleLoop, OnlyLargeTrianglesWholeMeshesWithinTheCap) {
+  Scene scene;
+  scene.meshes.push_back(tessellated_sphere({0, 0, 0}, 1, 8, 12, lambertian(0.5)));
+  scene.meshes.push_back(tessellated_sphere({3, 0, 0}, 1, 8, 12, lambertian(0.5)));
+  EXPECT_EQ(loop_triangle_count(scene), 0);
+  EXPECT_TRUE(hierarchy_triangles(scene));
+  TriangleMesh floor;
+  floor.name = "floor";
+  floor.positions = {{-50, -1, -50}, {50, -1, -50}, {50, -1, 50}, {-50, -1, 50}};
+  floor.triangles = {{0, 2, 1}, {0, 3, 2}};
+  floor.material = lambertian(0.5);
+  scene.meshes.push_back(floor);
+  EXPECT_EQ(loop_triangle_count(scene), 2);
+  // A grid of 36 large triangles (more than kMaxLoopTriangles): it does not fit, the floor does.
+  TriangleMesh wall;
+  wall.name = "wall";
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; j <= 3; ++j) wall.positions.push_back({-60.0 + 40 * i, -1.0 + 40 * j, -60.0});
+  for (uint32_t i = 0; i < 3; ++i)
+    for (uint32_t j = 0; j < 3; ++j) {
+      const uint32_t a = i * 4 + j;
+      for (int twice = 0; twice < 2; ++twice) {
+        wall.triangles.push_back({a, a + 4, a + 5});
+        wall.triangles.push_back({a, a + 5, a + 1});
+      }
+    }
+  wall.material = lambertian(0.5);
+  ASSERT_GT(wall.triangles.size(), size_t(kMaxLoopTriangles));
+  scene.meshes.push_back(wall);
+  const std::vector<bool> in_loop = loop_meshes(scene);
+  EXPECT_FALSE(in_loop[3]);
+  EXPECT_TRUE(in_loop[2]);
+  EXPECT_EQ(loop_triangle_count(scene), 2);
+  for (int k = 0; k <= kMaxLoopSpheres; ++k) {
+    Sphere s;
+    s.name = "s" + std::to_string(k);
+    s.center = {double(k), 5, 0};
+    s.radius = 0.2;
+    s.material = lambertian(0.5);
+    scene.spheres.push_back(s);
+  }
+  EXPECT_EQ(loop_triangle_count(scene), 0);
 }
 
 }  // namespace

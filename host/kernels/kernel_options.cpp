@@ -244,6 +244,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     f.triangles |= !m.triangles.empty();
   }
   f.loop_triangles = loop_triangle_count(scene);
+  f.hierarchy_triangles = hierarchy_triangles(scene);
   return f;
 }
 
@@ -361,6 +362,7 @@ std::string kernel_build_options(const KernelFeatures& features) {
   if (!features.generic) o << " -DCLPT_SPHERE_COUNT=" << features.sphere_count;
   // Named only when on: the kernels of scenes without a small mesh keep their options.
   if (features.triangles_in_loop()) o << " -DCLPT_TRIANGLE_COUNT=" << features.loop_triangles;
+  if (features.loop_beside_hierarchy()) o << " -DCLPT_BVH_ROOT=1";
   if (!features.generic && features.light_count >= 0) o << " -DCLPT_LIGHT_COUNT=" << features.light_count;
   if (features.lockstep_group > 0) o << " -DCLPT_LOCKSTEP_GROUP=" << features.lockstep_group;
   // Only where there is a specialised loop to keep rolled: the generic kernel's programs stay one.
@@ -514,12 +516,17 @@ std::string explain_kernel_options(const KernelFeatures& features) {
   o << "  triangle loop: "
     << (features.generic ? std::string("left out (generic kernel: the hierarchy)")
         : !features.triangles ? std::string("left out (no mesh in the scene)")
+        : features.loop_beside_hierarchy()
+            ? "fixed at the " + std::to_string(features.loop_triangles) +
+                  " triangles of the scene's meshes of large triangles, unrolled (walls, floors: 100x the median "
+                  "triangle's area, at most " + std::to_string(kMaxLoopTriangles) + "); the others in the hierarchy"
         : features.triangles_in_loop()
             ? "fixed at the scene's " + std::to_string(features.loop_triangles) + " triangles, unrolled (at most " +
                   std::to_string(kMaxLoopTriangles) + "; measured 3x the hierarchy on the Cornell box's 32)"
         : features.spheres_in_bvh ? std::string("left out (the spheres are in the hierarchy)")
         : features.loop_triangles == 0
-            ? "left out (more than " + std::to_string(kMaxLoopTriangles) + " triangles: the hierarchy)"
+            ? "left out (more than " + std::to_string(kMaxLoopTriangles) +
+                  " triangles and no mesh of large ones: the hierarchy)"
             : std::string("left out (rolled scene loops, or not PoCL's CPU device with its 16 lanes set: the hierarchy)"))
     << "\n";
   o << "  hierarchy traversal: "

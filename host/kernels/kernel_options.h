@@ -177,6 +177,10 @@ struct KernelFeatures {
   // The scene's triangles when they are few enough for an unrolled loop (loop_triangle_count,
   // scene/loop_spheres.h), else 0; used only where the scene loops are unrolled (triangles_in_loop).
   int loop_triangles = 0;
+  // Some triangles are hierarchy primitives whatever the kernel (hierarchy_triangles,
+  // scene/loop_spheres.h): with the loop's meshes (loop_meshes) beside them the traversal starts
+  // at node 1, the root of their hierarchy (CLPT_BVH_ROOT=1, DeviceScene::loop_triangles).
+  bool hierarchy_triangles = true;
   // CLPT_TRIANGLE_COUNT: the triangles tested in the unrolled loop, no hierarchy: a specialised
   // kernel with unrolled scene loops on PoCL's CPU device with its vectoriser reachable (the 16
   // lanes set, cpu_vector_lanes), whose SLP vectoriser is then held off for it (cl/pocl_vectoriser.h:
@@ -192,8 +196,13 @@ struct KernelFeatures {
   // double preset PoCL's cold build of a lockstep megakernel 35-45% more time: docs/performance.md);
   // else one at a time from the same leaf block.
   bool wide_leaf_test() const { return cpu_vector_lanes > 0 && precision != Precision::Double; }
-  // CLPT_HAS_BVH: traversal compiled (triangles not in the loop, spheres_in_bvh or generic).
-  bool has_hierarchy() const { return generic || (triangles && !triangles_in_loop()) || spheres_in_bvh; }
+  // CLPT_HAS_BVH: traversal compiled (triangles not all in the loop, spheres_in_bvh or generic).
+  bool has_hierarchy() const {
+    return generic || (triangles && (!triangles_in_loop() || hierarchy_triangles)) || spheres_in_bvh;
+  }
+  // CLPT_BVH_ROOT=1: the triangle loop and the hierarchy both, the traversal starting at the
+  // hierarchy of the triangles not in the loop.
+  bool loop_beside_hierarchy() const { return triangles_in_loop() && hierarchy_triangles; }
   int sphere_count = 0;  // CLPT_SPHERE_COUNT when > 0 (a fixed loop, see SceneLoops); 0: read at run time
   int light_count = -1;  // CLPT_LIGHT_COUNT when >= 0: nee's sphere-light loop fixed likewise; -1: run time
   MegakernelLoop megakernel_loop = MegakernelLoop::Auto;  // the request; resolved per device into:

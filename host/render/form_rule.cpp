@@ -10,6 +10,8 @@ namespace {
 // that are all triangles. There every segment's work is the hierarchy traversal, which the
 // lockstep megakernel runs scalar in a region of its own and holds the whole group for the
 // longest path, while the wavefront compacts the paths that left (the Cornell box's open front).
+// Not where the meshes of large triangles are in the loop beside the hierarchy: most segments end
+// on them, in the lockstep megakernel's vectorised region.
 bool wavefront_on_cpu(SceneGeometry g) { return g == SceneGeometry::MeshesOnly; }
 
 }  // namespace
@@ -19,13 +21,16 @@ const char* scene_geometry_name(SceneGeometry g) {
     case SceneGeometry::SphereHierarchy: return "spheres in a hierarchy";
     case SceneGeometry::MeshesAndSpheres: return "meshes and loop spheres";
     case SceneGeometry::MeshesOnly: return "meshes only";
+    case SceneGeometry::LoopMeshesAndHierarchy: return "meshes of large triangles in the loop beside a hierarchy";
     case SceneGeometry::LoopSpheres: break;
   }
   return "loop spheres";
 }
 
 SceneGeometry scene_geometry(const KernelFeatures& f) {
-  if (f.triangles) return f.sphere_count == 0 && !f.spheres_in_bvh ? SceneGeometry::MeshesOnly : SceneGeometry::MeshesAndSpheres;
+  if (f.triangles && (f.sphere_count > 0 || f.spheres_in_bvh)) return SceneGeometry::MeshesAndSpheres;
+  if (f.triangles)
+    return f.loop_triangles > 0 && f.hierarchy_triangles ? SceneGeometry::LoopMeshesAndHierarchy : SceneGeometry::MeshesOnly;
   return f.spheres_in_bvh ? SceneGeometry::SphereHierarchy : SceneGeometry::LoopSpheres;
 }
 

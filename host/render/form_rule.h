@@ -17,7 +17,10 @@ enum class SceneGeometry {
   LoopSpheres,       // spheres only, all in the kernels' unrolled loop (the book's scenes)
   SphereHierarchy,   // more than a few spheres: the small ones are hierarchy primitives
   MeshesAndSpheres,  // triangles in the hierarchy beside spheres in the loop (a mesh in the book's room)
-  MeshesOnly,        // triangles in the hierarchy and no sphere at all (the Cornell box)
+  MeshesOnly,        // triangles and no sphere at all, in the hierarchy or all in the loop (the Cornell box)
+  // No sphere; the meshes of large triangles in the loop beside a hierarchy of the others
+  // (scene/loop_spheres.h, loop_meshes: a detailed model in a room of quads, on a ground plane).
+  LoopMeshesAndHierarchy,
 };
 const char* scene_geometry_name(SceneGeometry g);  // "loop spheres", ...
 SceneGeometry scene_geometry(const KernelFeatures& scene_features);
@@ -28,7 +31,8 @@ struct FormChoice {
 };
 
 // The rule. On CPU devices: the wavefront for MeshesOnly scenes, the megakernel (its lockstep
-// loop) for the others; on other devices (no GPU measured yet) the megakernel everywhere.
+// loop) for the others, LoopMeshesAndHierarchy too; on other devices (no GPU measured yet) the
+// megakernel everywhere.
 // `scene_features` is features_for_scene(scene) (what the scene has, not a generic kernel's).
 FormChoice default_form_for(const DeviceInfo& device, const KernelFeatures& scene_features);
 

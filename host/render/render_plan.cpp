@@ -135,7 +135,14 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
       // whole-image launch size, so there every launch gets the partial launches' size.
       if (d.local_size == 0 && d.device.uniform_launch_limit() > 0)
         d.local_size = MegakernelRenderer::kPartialLaunchLocalSize;
-    } else {
+    }
+    // The meshes of large triangles in the loop beside the hierarchy only in the lockstep
+    // megakernel, which runs the loop vectorised apart from the traversal: a path-at-a-time
+    // kernel (the wavefront's intersect stage, the per-path loop) would run it scalar before the
+    // traversal, slower than the hierarchy holding those triangles (docs/performance.md,
+    // "Traversal").
+    if (d.features.loop_beside_hierarchy() && d.features.lockstep_group == 0) d.features.loop_triangles = 0;
+    if (d.form == ExecutionForm::Wavefront) {
       d.entry_file = "wavefront.cl";
       d.local_size = request.local_size ? request.local_size : WavefrontRenderer::kDefaultLocalSize;
       d.paths_in_flight =

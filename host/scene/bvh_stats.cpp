@@ -163,6 +163,7 @@ void TraversalCounts::add(const TraversalCounts& o) {
   triangles += o.triangles;
   hierarchy_spheres += o.hierarchy_spheres;
   loop_spheres += o.loop_spheres;
+  loop_triangles += o.loop_triangles;
 }
 
 TraversalCounts TraversalStats::all() const {
@@ -171,7 +172,8 @@ TraversalCounts TraversalStats::all() const {
   return c;
 }
 
-StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, TraversalCounts& counts) {
+StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, TraversalCounts& counts,
+                             bool triangle_loop) {
   const D3& o = ray.origin;
   const D3& d = ray.direction;
   StatsHit hit;
@@ -186,12 +188,23 @@ StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, Travers
       hit.sphere = int(i);
     }
   }
-  // bvh_traverse, closest hit.
+  // triangle_loop_hit: the loop's triangles (the first ones), where the kernel tests them so.
+  const bool loop_first = triangle_loop && ds.loop_triangles > 0;
+  for (uint32_t i = 0; loop_first && i < ds.loop_triangles; ++i) {
+    ++counts.loop_triangles;
+    const double t = triangle_hit(ds.triangles[i], o, d);
+    if (t < hit.t) {
+      hit.t = t;
+      hit.sphere = -1;
+      hit.triangle = int(i);
+    }
+  }
+  // bvh_traverse, closest hit, from CLPT_BVH_ROOT.
   const std::vector<GpuBvhNode>& nodes = ds.bvh.nodes;
   if (!nodes.empty()) {
     const D3 inv = inverse_direction(d);
     uint32_t stack[CLPT_BVH_STACK];
-    uint32_t depth = 0, node = 0, ref = 0;
+    uint32_t depth = 0, node = loop_first ? 1 : 0, ref = 0;
     bool open = true, done = false;
     while (!done) {
       ++counts.nodes;
@@ -310,10 +323,10 @@ StatsRaySample stats_rays(const DeviceScene& ds, int width, int height, size_t m
   return sample;
 }
 
-TraversalStats measure_traversal(const DeviceScene& ds, const StatsRaySample& sample) {
+TraversalStats measure_traversal(const DeviceScene& ds, const StatsRaySample& sample, bool triangle_loop) {
   TraversalStats stats;
   for (size_t i = 0; i < sample.rays.size(); ++i)
-    replica_closest_hit(ds, sample.rays[i], i < sample.camera_rays ? stats.camera : stats.bounce);
+    replica_closest_hit(ds, sample.rays[i], i < sample.camera_rays ? stats.camera : stats.bounce, triangle_loop);
   return stats;
 }
 

@@ -38,10 +38,10 @@ struct StatsRay {
 // again, then its leaf tested or its node opened in the next iteration), box tests (a node's
 // occupied child slots, and each popped entry's), triangle and sphere tests in leaves. The loop's
 // spheres (DeviceScene::loop_spheres) are tested before the hierarchy, as the kernels do, and
-// count as sphere tests too.
+// count as sphere tests too; with `triangle_loop`, the loop's triangles likewise (loop_triangles).
 struct TraversalCounts {
   uint64_t rays = 0, hits = 0;
-  uint64_t nodes = 0, boxes = 0, triangles = 0, hierarchy_spheres = 0, loop_spheres = 0;
+  uint64_t nodes = 0, boxes = 0, triangles = 0, hierarchy_spheres = 0, loop_spheres = 0, loop_triangles = 0;
   void add(const TraversalCounts& o);
   double per_ray(uint64_t n) const { return rays ? double(n) / double(rays) : 0; }
 };
@@ -55,7 +55,11 @@ struct StatsHit {
 };
 
 // The replica of scene_closest_hit (kernels/bvh.cl) for one ray, counting into `counts`.
-StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, TraversalCounts& counts);
+// `triangle_loop`: as a kernel whose triangle loop tests the loop's meshes' triangles
+// (DeviceScene::loop_triangles) before a traversal from node 1 (CLPT_BVH_ROOT=1,
+// KernelFeatures::loop_beside_hierarchy); else the traversal from the root, as every other.
+StatsHit replica_closest_hit(const DeviceScene& ds, const StatsRay& ray, TraversalCounts& counts,
+                             bool triangle_loop = false);
 
 // The sample of rays the statistics use, deterministic (no seed but the ray's index):
 //  * camera rays: one through the centre of every `stride`-th pixel in each direction of a
@@ -77,6 +81,6 @@ struct TraversalStats {
   TraversalCounts camera, bounce;  // the two kinds of ray, apart
   TraversalCounts all() const;
 };
-TraversalStats measure_traversal(const DeviceScene& ds, const StatsRaySample& sample);
+TraversalStats measure_traversal(const DeviceScene& ds, const StatsRaySample& sample, bool triangle_loop = false);
 
 }  // namespace clpt

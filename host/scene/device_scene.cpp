@@ -308,6 +308,70 @@ std::vector<uint8_t> hierarchy_device_data(const DeviceScene& scene) {
   return bytes;
 }
 
+// The box of all of `node`'s occupied slots.
+void union_of_slots(const GpuBvhNode& node, float lower[3], float upper[3]) {
+  lower[0] = lower[1] = lower[2] = INFINITY;
+  upper[0] = upper[1] = upper[2] = -INFINITY;
+  for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+    if (!(node.lower_x[i] <= node.upper_x[i])) continue;  // empty: inverted (types.h)
+    lower[0] = std::min(lower[0], node.lower_x[i]), upper[0] = std::max(upper[0], node.upper_x[i]);
+    lower[1] = std::min(lower[1], node.lower_y[i]), upper[1] = std::max(upper[1], node.upper_y[i]);
+    lower[2] = std::min(lower[2], node.lower_z[i]), upper[2] = std::max(upper[2], node.upper_z[i]);
+  }
+}
+
+// Adds `by` to every interior child index of `nodes` (a tree moved by `by` places).
+void shift_interior(std::vector<GpuBvhNode>& nodes, uint32_t by) {
+  for (GpuBvhNode& n : nodes)
+    for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
+      if (n.count[i] == 0u && n.lower_x[i] <= n.upper_x[i]) n.child[i] += by;
+}
+
+// The hierarchy of a scene with meshes in the loop beside others (DeviceScene::loop_triangles):
+// a new root (node 0) over two subtrees, slot 0 `rest` (the hierarchy of the other triangles,
+// from node 1, where a kernel with the loop starts) and slot 1 `loop` (a hierarchy of the loop's
+// triangles, after it, which the kernels without the loop traverse). The loop's triangles come
+// first in the triangle order, in `loop`'s leaf order; `rest`'s leaves move up past them.
+Bvh graft_loop_tree(Bvh rest, Bvh loop) {
+  const uint32_t loop_count = static_cast<uint32_t>(loop.triangle_order.size());
+  for (GpuBvhNode& n : rest.nodes)
+    for (int i = 0; i < CLPT_BVH_WIDTH; ++i)
+      if (n.count[i] != 0u && !(n.count[i] & CLPT_BVH_SPHERE_LEAF)) n.child[i] += loop_count;
+  const uint32_t rest_nodes = static_cast<uint32_t>(rest.nodes.size());
+  shift_interior(rest.nodes, 1);
+  shift_interior(loop.nodes, 1 + rest_nodes);
+  GpuBvhNode root{};
+  for (int i = 0; i < CLPT_BVH_WIDTH; ++i) {
+    root.lower_x[i] = root.lower_y[i] = root.lower_z[i] = INFINITY;
+    root.upper_x[i] = root.upper_y[i] = root.upper_z[i] = -INFINITY;
+  }
+  float lower[3], upper[3];
+  union_of_slots(rest.nodes.front(), lower, upper);
+  root.lower_x[0] = lower[0], root.lower_y[0] = lower[1], root.lower_z[0] = lower[2];
+  root.upper_x[0] = upper[0], root.upper_y[0] = upper[1], root.upper_z[0] = upper[2];
+  root.child[0] = 1;
+  union_of_slots(loop.nodes.front(), lower, upper);
+  root.lower_x[1] = lower[0], root.lower_y[1] = lower[1], root.lower_z[1] = lower[2];
+  root.upper_x[1] = upper[0], root.upper_y[1] = upper[1], root.upper_z[1] = upper[2];
+  root.child[1] = 1 + rest_nodes;
+  Bvh out = std::move(rest);
+  out.nodes.insert(out.nodes.begin(), root);
+  out.nodes.insert(out.nodes.end(), loop.nodes.begin(), loop.nodes.end());
+  std::vector<uint32_t> order = loop.triangle_order;
+  order.insert(order.end(), out.triangle_order.begin(), out.triangle_order.end());
+  out.triangle_order = std::move(order);
+  // One level above both; the root's other child pushed while one is visited.
+  out.depth = std::max(out.depth, loop.depth) + 1;
+  out.stack_need = std::max(out.stack_need, loop.stack_need) + 1;
+  out.build_seconds += loop.build_seconds;
+  out.build_cpu_seconds += loop.build_cpu_seconds;
+  if (out.stack_need > CLPT_BVH_STACK)
+    throw Error(ExitCode::BadScene, "the bounding volume hierarchy could need " + std::to_string(out.stack_need) +
+                                        " entries of the kernels' traversal stack, which holds " +
+                                        std::to_string(CLPT_BVH_STACK));
+  return out;
+}
+
 DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision, BvhBuilder builder) {
   DeviceScene out;
   const Camera& cam = scene.camera;
@@ -316,6 +380,18 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
 
   std::vector<BvhPrimitive> prims;
   add_triangles(scene, out, prims);
+  // The loop's meshes, when the hierarchy has other triangles: theirs leave the build and go
+  // first (loop_triangles).
+  std::vector<BvhPrimitive> loop_prims;
+  if (hierarchy_triangles(scene)) {
+    const std::vector<bool> in_loop = loop_meshes(scene);
+    std::vector<BvhPrimitive> rest;
+    size_t next = 0;
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      for (size_t t = 0; t < scene.meshes[m].triangles.size(); ++t, ++next)
+        (in_loop[m] ? loop_prims : rest).push_back(prims[next]);
+    if (!loop_prims.empty()) prims = std::move(rest);
+  }
   const bool spheres_in_bvh = spheres_in_hierarchy(scene);
   const std::vector<bool> in_loop = loop_spheres(scene);
   // The sphere buffer: the loop's spheres first (scene order), then the hierarchy's (leaf order).
@@ -338,6 +414,10 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   BvhBuildOptions build;
   if (!spheres_in_bvh) build.leaf_group = int(kTriangleBlockLanes);
   out.bvh = build_bvh_with(builder, prims, build);
+  if (!loop_prims.empty()) {
+    out.bvh = graft_loop_tree(std::move(out.bvh), build_bvh_with(builder, loop_prims, build));
+    out.loop_triangles = static_cast<uint32_t>(loop_prims.size());
+  }
   out.triangles = permuted(out.triangles, out.bvh.triangle_order);
   out.triangle_shading = permuted(out.triangle_shading, out.bvh.triangle_order);
   if (spheres_in_bvh) {

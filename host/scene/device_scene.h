@@ -22,13 +22,20 @@ struct DeviceScene {
   // (light_caps()), then every emitting triangle of positive area, then the punctual lights; with
   // the pick distribution.
   std::vector<GpuLight> lights;
-  // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each.
+  // Every mesh's triangles, in the hierarchy's leaf order, and what shading reads of each; the
+  // loop's meshes' first when they are some of the meshes (loop_triangles).
   std::vector<GpuTriangle> triangles;
   std::vector<GpuTriangleShading> triangle_shading;
   // The textures, every triangle's texture coordinates and tangents (device_textures.h); empty
   // without textures.
   std::vector<uint8_t> texturing;
   Bvh bvh;  // over the triangles, and the spheres when they are in it; no nodes when neither
+  // The triangles of the loop's meshes (loop_meshes) when other meshes are in the hierarchy
+  // only: they come first, and the root (node 0) holds two subtrees, node 1 the hierarchy of the
+  // others, where a kernel that tests these in its loop starts (CLPT_BVH_ROOT=1), and after it a
+  // hierarchy of these, which the other kernels traverse. 0 otherwise: node 0 is the root of a
+  // hierarchy of every triangle, and a kernel with the triangle loop has no traversal.
+  uint32_t loop_triangles = 0;
   // The environment light's header and data (types.h GpuEnvironment, scene/environment_map.h);
   // an empty one (kind NONE) when the scene has none.
   std::vector<float> environment;

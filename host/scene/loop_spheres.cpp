@@ -1,6 +1,10 @@
 #include "scene/loop_spheres.h"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
+
+#include "scene/vec3_ops.h"
 
 namespace clpt {
 
@@ -24,11 +28,66 @@ std::vector<bool> loop_spheres(const Scene& scene) {
   return in_loop;
 }
 
-int loop_triangle_count(const Scene& scene) {
-  if (spheres_in_hierarchy(scene)) return 0;
+namespace {
+
+// A triangle's area, world units^2.
+double area(const TriangleMesh& m, const std::array<uint32_t, 3>& t) {
+  return 0.5 * length(cross(sub(m.positions[t[1]], m.positions[t[0]]), sub(m.positions[t[2]], m.positions[t[0]])));
+}
+
+size_t triangle_total(const Scene& scene) {
   size_t n = 0;
   for (const TriangleMesh& m : scene.meshes) n += m.triangles.size();
-  return n <= static_cast<size_t>(kMaxLoopTriangles) ? static_cast<int>(n) : 0;
+  return n;
+}
+
+}  // namespace
+
+std::vector<bool> loop_meshes(const Scene& scene) {
+  const size_t meshes = scene.meshes.size();
+  if (spheres_in_hierarchy(scene)) return std::vector<bool>(meshes, false);
+  const size_t total = triangle_total(scene);
+  if (total <= static_cast<size_t>(kMaxLoopTriangles)) {
+    std::vector<bool> all(meshes);
+    for (size_t i = 0; i < meshes; ++i) all[i] = !scene.meshes[i].triangles.empty();
+    return all;
+  }
+  std::vector<double> areas;
+  areas.reserve(total);
+  std::vector<double> mean(meshes, 0.0);
+  for (size_t i = 0; i < meshes; ++i) {
+    for (const auto& t : scene.meshes[i].triangles) {
+      areas.push_back(area(scene.meshes[i], t));
+      mean[i] += areas.back();
+    }
+    if (!scene.meshes[i].triangles.empty()) mean[i] /= double(scene.meshes[i].triangles.size());
+  }
+  std::nth_element(areas.begin(), areas.begin() + long(total / 2), areas.end());
+  const double large = 100 * areas[total / 2];
+  std::vector<size_t> order;
+  for (size_t i = 0; i < meshes; ++i)
+    if (!scene.meshes[i].triangles.empty() && mean[i] >= large && mean[i] > 0) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return mean[a] > mean[b]; });
+  std::vector<bool> in_loop(meshes, false);
+  size_t room = kMaxLoopTriangles;
+  for (size_t i : order) {
+    const size_t n = scene.meshes[i].triangles.size();
+    if (n > room) continue;
+    in_loop[i] = true;
+    room -= n;
+  }
+  return in_loop;
+}
+
+int loop_triangle_count(const Scene& scene) {
+  const std::vector<bool> in_loop = loop_meshes(scene);
+  size_t n = 0;
+  for (size_t i = 0; i < in_loop.size(); ++i) n += in_loop[i] ? scene.meshes[i].triangles.size() : 0;
+  return static_cast<int>(n);
+}
+
+bool hierarchy_triangles(const Scene& scene) {
+  return triangle_total(scene) > static_cast<size_t>(loop_triangle_count(scene));
 }
 
 }  // namespace clpt

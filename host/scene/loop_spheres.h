@@ -29,7 +29,17 @@ std::vector<bool> loop_spheres(const Scene& scene);
 // body's cold PoCL build under 10 s on 2 cores (32 triangles: 6-7 CPU-s; 40: 9.4; 64: 17): the
 // Cornell box fits; docs/performance.md, "Fixed costs" and "Traversal".
 constexpr int kMaxLoopTriangles = 32;
-// The scene's triangle count when its triangles are few enough for the loop, else 0.
+// Which meshes' triangles the loop tests (loop_triangle_count of them in all): every mesh when the
+// scene has at most kMaxLoopTriangles triangles; in a larger scene (whose spheres are all in the
+// loop) the meshes of large triangles, as the spheres' walls: those whose mean triangle area is at
+// least 100 times the median triangle's (a room's walls and floor, a ground plane, an area light
+// around a detailed model), largest mean first, whole meshes while the loop has room. Their
+// triangles would otherwise sit in leaves whose boxes span the scene, which nearly every ray
+// visits. None when the spheres are hierarchy primitives.
+std::vector<bool> loop_meshes(const Scene& scene);
+// The triangles of the loop's meshes (loop_meshes), at most kMaxLoopTriangles.
 int loop_triangle_count(const Scene& scene);
+// Whether some triangle is a hierarchy primitive in every kernel (not in the loop's meshes).
+bool hierarchy_triangles(const Scene& scene);
 
 }  // namespace clpt

@@ -94,13 +94,14 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   if (!ds.bvh.nodes.empty()) {
     row.sah_cost = bvh_sah_cost(ds.bvh);
     sample = stats_rays(ds, c.width, c.height);
-    const TraversalCounts counts = measure_traversal(ds, sample).all();
+    const TraversalCounts counts = measure_traversal(ds, sample, planned.features.loop_beside_hierarchy()).all();
     row.stats_rays = counts.rays;
     row.stats_camera_rays = sample.camera_rays;
     row.nodes_per_ray = counts.per_ray(counts.nodes);
     row.boxes_per_ray = counts.per_ray(counts.boxes);
     row.triangles_per_ray = counts.per_ray(counts.triangles);
     row.spheres_per_ray = counts.per_ray(counts.hierarchy_spheres);
+    row.loop_triangles_per_ray = counts.per_ray(counts.loop_triangles);
   }
   if (!c.traversal_anchor.empty() && row.triangles > 0)
     row.anchor = time_embree_anchor(ds.triangles, sample, int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
@@ -332,9 +333,12 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
                     r.device_bytes_per_triangle);
       o << line;
       std::snprintf(line, sizeof line,
-                    "    traversal: SAH cost %.2f; per ray %.1f nodes, %.1f boxes, %.1f triangles, %.1f spheres "
+                    "    traversal: SAH cost %.2f; per ray %.1f nodes, %.1f boxes, %.1f triangles, %.1f spheres%s "
                     "(replica over %llu rays: %llu camera + %llu bounce)\n",
                     r.sah_cost, r.nodes_per_ray, r.boxes_per_ray, r.triangles_per_ray, r.spheres_per_ray,
+                    r.loop_triangles_per_ray > 0
+                        ? (", beside " + std::to_string(int(r.loop_triangles_per_ray + 0.5)) + " in the triangle loop").c_str()
+                        : "",
                     static_cast<unsigned long long>(r.stats_rays), static_cast<unsigned long long>(r.stats_camera_rays),
                     static_cast<unsigned long long>(r.stats_rays - r.stats_camera_rays));
       o << line;
@@ -403,7 +407,8 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"traversal", {{"rays", r.stats_rays}, {"camera_rays", r.stats_camera_rays},
                                          {"nodes_per_ray", r.nodes_per_ray}, {"boxes_per_ray", r.boxes_per_ray},
                                          {"triangles_per_ray", r.triangles_per_ray},
-                                         {"spheres_per_ray", r.spheres_per_ray}}},
+                                         {"spheres_per_ray", r.spheres_per_ray},
+                                         {"loop_triangles_per_ray", r.loop_triangles_per_ray}}},
                           {"rays_per_s", r.segments_per_s.median}, {"rays_per_cpu_s", rays_per_cpu_s(r)},
                           {"paths_per_s", spread(r.paths_per_s)},
                           {"segments_per_s", spread(r.segments_per_s)}, {"paths_per_cpu_s", spread(r.paths_per_cpu_s)},

@@ -93,10 +93,11 @@ struct BenchRow {
   double bvh_build_cpu_s = 0;  // CPU seconds of the build, all threads (Bvh::build_cpu_seconds)
   // The hierarchy's statistics (scene/bvh_stats.h): its SAH cost, and per closest-hit ray of the
   // replica's sample (stats_rays at the row's image size: camera rays, then one diffuse bounce
-  // from each camera hit) the nodes visited, box tests, triangle tests and hierarchy sphere tests.
+  // from each camera hit) the nodes visited, box tests, triangle tests and hierarchy sphere tests,
+  // and the triangle loop's tests where the row's kernel has one beside the hierarchy.
   double sah_cost = 0;
   uint64_t stats_rays = 0, stats_camera_rays = 0;
-  double nodes_per_ray = 0, boxes_per_ray = 0, triangles_per_ray = 0, spheres_per_ray = 0;
+  double nodes_per_ray = 0, boxes_per_ray = 0, triangles_per_ray = 0, spheres_per_ray = 0, loop_triangles_per_ray = 0;
   Spread paths_per_s, segments_per_s;
   // clpt's closest-hit rays/s: its segments/s (every segment of a path is one closest-hit query;
   // shading, shadow rays and the loop's spheres share the time), the figure set beside the anchor's.
