@@ -74,6 +74,11 @@ struct DevicePool::PassState {
 DevicePool::DevicePool(const RenderPlan& plan, const DeviceScene& scene, FaultPlan faults)
     : faults_(std::move(faults)) {
   for (const DevicePlan& d : plan.devices) {
+    // A kernel whose triangle loop tests the meshes of large triangles starts its traversal at
+    // node 1: the scene must have been converted with them apart (RenderPlan::loop_meshes_apart).
+    if (d.features.loop_beside_hierarchy() && scene.loop_triangles != uint32_t(d.features.loop_triangles))
+      throw std::logic_error("DevicePool: the device scene's loop triangles (" + std::to_string(scene.loop_triangles) +
+                             ") are not the kernel's (" + std::to_string(d.features.loop_triangles) + ")");
     members_.push_back(std::make_unique<Member>());
     members_.back()->position = d.position;
     members_.back()->info = d.device;

@@ -155,6 +155,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     d.memory = estimate_device_memory(d.form, plan.image_pixels, scene.spheres.size(), d.paths_in_flight, d.device,
                                       triangle_count(scene), light_entry_bound(scene), environment_bytes_of(scene),
                                       d.features.aovs);
+    plan.loop_meshes_apart = plan.loop_meshes_apart || d.features.loop_beside_hierarchy();
     plan.devices.push_back(std::move(d));
   }
   plan.textures = explain_textures(scene);

@@ -50,6 +50,11 @@ struct RenderPlan {
   Precision precision = Precision::Robust;
   bool use_kernel_cache = true;
   std::vector<DevicePlan> devices;  // in --device list order
+  // Some device's kernel tests the meshes of large triangles in its loop beside the hierarchy
+  // (KernelFeatures::loop_beside_hierarchy): the device scene then keeps them in a subtree of
+  // their own (make_device_scene). Else one hierarchy over every triangle, as the other kernels
+  // traverse best.
+  bool loop_meshes_apart = false;
   std::string textures;  // one line per texture image: size, storage, device bytes (device_textures.h); "" for none
 };
 

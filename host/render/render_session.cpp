@@ -69,7 +69,8 @@ Film run_render(const RenderRequest& request, RenderReport& report) {
   //    in parallel, and launched once apart from the passes (DevicePool::warm_up: what a driver
   //    compiles at a first launch). A rank whose devices all fail takes no part; the others carry on.
   const Clock::time_point convert_start = Clock::now();
-  const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision);
+  const DeviceScene device_scene = make_device_scene(scene, settings.width, settings.height, request.precision,
+                                                     BvhBuilder::Clpt, plan.loop_meshes_apart);
   report.convert_seconds = seconds_since(convert_start);
   const FaultPlan faults = request.faults ? *request.faults : FaultPlan::from_environment();
   std::unique_ptr<DevicePool> pool;

@@ -107,13 +107,18 @@ double triangle_area(const GpuTriangle& t) {
   return 0.5 * length(cross(sub(b, a), sub(c, a)));
 }
 
-// Appends a light entry for every emitting triangle of positive area (in the triangle buffer's
-// final order), then fills the pick distribution of the whole list: by power when there are
-// triangle lights, else uniform (what kernels without triangle lights draw); uniform also when
-// every power is 0. Each emitting triangle's light_area_density is set from its pick.
-void add_triangle_lights(DeviceScene& out, const std::vector<GpuLight>& punctual) {
+// Appends a light entry for every emitting triangle of positive area, in the scene's order of the
+// triangles (meshes, then triangles within each: `order[i]` is the scene's index of the triangle
+// buffer's entry i), so that the list and its picks do not depend on the hierarchy's leaf order
+// (the builder, or the meshes kept apart for the triangle loop: the same seed gives the same
+// image); then fills the pick distribution of the whole list: by power when there are triangle
+// lights, else uniform (what kernels without triangle lights draw); uniform also when every power
+// is 0. Each emitting triangle's light_area_density is set from its pick.
+void add_triangle_lights(DeviceScene& out, const std::vector<uint32_t>& order, const std::vector<GpuLight>& punctual) {
   const size_t sphere_lights = out.lights.size();
-  for (size_t i = 0; i < out.triangles.size(); ++i) {
+  std::vector<uint32_t> buffer_index(order.size());
+  for (size_t i = 0; i < order.size(); ++i) buffer_index[order[i]] = static_cast<uint32_t>(i);
+  for (const uint32_t i : buffer_index) {
     if (!emits(out.triangle_shading[i].material)) continue;
     const double area = triangle_area(out.triangles[i]);
     if (!(area > 0)) continue;  // a degenerate triangle cannot be sampled (BSDF rays never hit it)
@@ -372,7 +377,8 @@ Bvh graft_loop_tree(Bvh rest, Bvh loop) {
   return out;
 }
 
-DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision, BvhBuilder builder) {
+DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision, BvhBuilder builder,
+                              bool loop_meshes_apart) {
   DeviceScene out;
   const Camera& cam = scene.camera;
   for (const Sphere& s : scene.spheres) out.spheres.push_back(to_gpu(s, cam.look_at, cam.position));
@@ -383,7 +389,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   // The loop's meshes, when the hierarchy has other triangles: theirs leave the build and go
   // first (loop_triangles).
   std::vector<BvhPrimitive> loop_prims;
-  if (hierarchy_triangles(scene)) {
+  if (loop_meshes_apart && hierarchy_triangles(scene)) {
     const std::vector<bool> in_loop = loop_meshes(scene);
     std::vector<BvhPrimitive> rest;
     size_t next = 0;
@@ -434,7 +440,7 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   out.scene_radius = bounding_radius(scene);
   std::vector<GpuLight> punctual;
   for (const PunctualLight& l : scene.lights) punctual.push_back(to_gpu(l, cam.position));
-  add_triangle_lights(out, punctual);
+  add_triangle_lights(out, out.bvh.triangle_order, punctual);
   out.environment = environment_device_data(scene.environment, !out.lights.empty());
 
   // The book's sensor, scaled to unit distance: only directions matter for a pinhole. An

@@ -70,9 +70,13 @@ SurfaceFrame surface_frame(const Sphere& s, const Vec3& anchor);
 // kernels see is of the size of distances inside the scene, never of a huge radius or a large
 // world coordinate.
 // `precision` sets the ray epsilon (ray_epsilon_for); `builder` makes the hierarchy (only
-// `clpt bench --bvh-builders` passes another than clpt's own).
+// `clpt bench --bvh-builders` passes another than clpt's own). `loop_meshes_apart`: the meshes of
+// large triangles (loop_meshes), where other meshes are in the hierarchy only, in a subtree of
+// their own beside the others' (loop_triangles), as a kernel that tests them in its triangle loop
+// needs (RenderPlan::loop_meshes_apart; every kernel can traverse it); false: one hierarchy over
+// every triangle.
 DeviceScene make_device_scene(const Scene& scene, int width, int height, Precision precision = Precision::Robust,
-                              BvhBuilder builder = BvhBuilder::Clpt);
+                              BvhBuilder builder = BvhBuilder::Clpt, bool loop_meshes_apart = true);
 
 // How next-event estimation samples an emitter (RenderSettings::light_sampling).
 //   Cap:    uniformly by area over the part of it that no other sphere hides, found as the

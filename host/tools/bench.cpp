@@ -80,7 +80,7 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   const RenderRequest request = cell_request(scene, c, form, generic, precision, local_size, loop);
   const RenderPlan plan = plan_render(request, {device});
   const DevicePlan& planned = plan.devices.front();
-  const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision, builder);
+  const DeviceScene ds = make_device_scene(scene, c.width, c.height, precision, builder, plan.loop_meshes_apart);
   row.bvh_builder = bvh_builder_name(builder);
   row.triangles = ds.triangles.size();
   row.hierarchy_spheres = ds.bvh.sphere_order.size();
