@@ -243,8 +243,9 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
     uses(m.material);
     f.triangles |= !m.triangles.empty();
   }
-  f.loop_triangles = loop_triangle_count(scene);
-  f.hierarchy_triangles = hierarchy_triangles(scene);
+  const TriangleLoopChoice loop = triangle_loop_choice(scene);
+  f.loop_triangles = loop.triangles;
+  f.hierarchy_triangles = loop.hierarchy_triangles;
   return f;
 }
 
@@ -524,6 +525,11 @@ std::string explain_kernel_options(const KernelFeatures& features) {
             ? "fixed at the scene's " + std::to_string(features.loop_triangles) + " triangles, unrolled (at most " +
                   std::to_string(kMaxLoopTriangles) + "; measured 3x the hierarchy on the Cornell box's 32)"
         : features.spheres_in_bvh ? std::string("left out (the spheres are in the hierarchy)")
+        : features.loop_triangles > 0 && features.hierarchy_triangles && features.unroll_scene_loops &&
+                  features.cpu_vector_lanes > 0
+            ? "left out (the " + std::to_string(features.loop_triangles) +
+                  " triangles of the scene's meshes of large triangles go to the loop in the lockstep megakernel only: "
+                  "here the hierarchy holds them)"
         : features.loop_triangles == 0
             ? "left out (more than " + std::to_string(kMaxLoopTriangles) +
                   " triangles and no mesh of large ones: the hierarchy)"

@@ -181,6 +181,10 @@ struct KernelFeatures {
   // scene/loop_spheres.h): with the loop's meshes (loop_meshes) beside them the traversal starts
   // at node 1, the root of their hierarchy (CLPT_BVH_ROOT=1, DeviceScene::loop_triangles).
   bool hierarchy_triangles = true;
+  // Whether the kernel may test the meshes of large triangles in its loop beside the hierarchy:
+  // only the lockstep megakernel, which runs the loop vectorised apart from the traversal
+  // (render_plan.cpp sets false for the others).
+  bool loop_beside_hierarchy_allowed = true;
   // CLPT_TRIANGLE_COUNT: the triangles tested in the unrolled loop, no hierarchy: a specialised
   // kernel with unrolled scene loops on PoCL's CPU device with its vectoriser reachable (the 16
   // lanes set, cpu_vector_lanes), whose SLP vectoriser is then held off for it (cl/pocl_vectoriser.h:
@@ -188,6 +192,7 @@ struct KernelFeatures {
   // PoCL's LLVM cannot be reached, keep the per-path traversal.
   bool triangles_in_loop() const {
     return !generic && triangles && loop_triangles > 0 && !spheres_in_bvh && unroll_scene_loops &&
+           (!hierarchy_triangles || loop_beside_hierarchy_allowed) &&
            cpu_vector_lanes > 0;
   }
   // CLPT_WIDE_LEAF_TEST (kernels/bvh.cl): a hierarchy leaf's four triangles tested in one vector

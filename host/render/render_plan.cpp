@@ -141,7 +141,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::vector<DeviceInf
     // kernel (the wavefront's intersect stage, the per-path loop) would run it scalar before the
     // traversal, slower than the hierarchy holding those triangles (docs/performance.md,
     // "Traversal").
-    if (d.features.loop_beside_hierarchy() && d.features.lockstep_group == 0) d.features.loop_triangles = 0;
+    d.features.loop_beside_hierarchy_allowed = d.features.lockstep_group > 0;
     if (d.form == ExecutionForm::Wavefront) {
       d.entry_file = "wavefront.cl";
       d.local_size = request.local_size ? request.local_size : WavefrontRenderer::kDefaultLocalSize;

@@ -389,8 +389,9 @@ DeviceScene make_device_scene(const Scene& scene, int width, int height, Precisi
   // The loop's meshes, when the hierarchy has other triangles: theirs leave the build and go
   // first (loop_triangles).
   std::vector<BvhPrimitive> loop_prims;
-  if (loop_meshes_apart && hierarchy_triangles(scene)) {
-    const std::vector<bool> in_loop = loop_meshes(scene);
+  const TriangleLoopChoice loop = loop_meshes_apart ? triangle_loop_choice(scene) : TriangleLoopChoice{};
+  if (loop.hierarchy_triangles) {
+    const std::vector<bool>& in_loop = loop.meshes;
     std::vector<BvhPrimitive> rest;
     size_t next = 0;
     for (size_t m = 0; m < scene.meshes.size(); ++m)

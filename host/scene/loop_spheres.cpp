@@ -79,15 +79,18 @@ std::vector<bool> loop_meshes(const Scene& scene) {
   return in_loop;
 }
 
-int loop_triangle_count(const Scene& scene) {
-  const std::vector<bool> in_loop = loop_meshes(scene);
+TriangleLoopChoice triangle_loop_choice(const Scene& scene) {
+  TriangleLoopChoice c;
+  c.meshes = loop_meshes(scene);
   size_t n = 0;
-  for (size_t i = 0; i < in_loop.size(); ++i) n += in_loop[i] ? scene.meshes[i].triangles.size() : 0;
-  return static_cast<int>(n);
+  for (size_t i = 0; i < c.meshes.size(); ++i) n += c.meshes[i] ? scene.meshes[i].triangles.size() : 0;
+  c.triangles = static_cast<int>(n);
+  c.hierarchy_triangles = triangle_total(scene) > n;
+  return c;
 }
 
-bool hierarchy_triangles(const Scene& scene) {
-  return triangle_total(scene) > static_cast<size_t>(loop_triangle_count(scene));
-}
+int loop_triangle_count(const Scene& scene) { return triangle_loop_choice(scene).triangles; }
+
+bool hierarchy_triangles(const Scene& scene) { return triangle_loop_choice(scene).hierarchy_triangles; }
 
 }  // namespace clpt

@@ -37,9 +37,16 @@ constexpr int kMaxLoopTriangles = 32;
 // triangles would otherwise sit in leaves whose boxes span the scene, which nearly every ray
 // visits. None when the spheres are hierarchy primitives.
 std::vector<bool> loop_meshes(const Scene& scene);
-// The triangles of the loop's meshes (loop_meshes), at most kMaxLoopTriangles.
-int loop_triangle_count(const Scene& scene);
-// Whether some triangle is a hierarchy primitive in every kernel (not in the loop's meshes).
-bool hierarchy_triangles(const Scene& scene);
+// The triangle loop's choice in one pass over the triangles (the areas of a million take tens of
+// milliseconds): the meshes (loop_meshes), their triangles (at most kMaxLoopTriangles), and
+// whether some triangle is a hierarchy primitive in every kernel (not in the loop's meshes).
+struct TriangleLoopChoice {
+  std::vector<bool> meshes;
+  int triangles = 0;
+  bool hierarchy_triangles = false;
+};
+TriangleLoopChoice triangle_loop_choice(const Scene& scene);
+int loop_triangle_count(const Scene& scene);   // triangle_loop_choice(scene).triangles
+bool hierarchy_triangles(const Scene& scene);  // triangle_loop_choice(scene).hierarchy_triangles
 
 }  // namespace clpt
