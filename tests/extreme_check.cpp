@@ -23,6 +23,7 @@ struct Rendered {
   std::vector<float> mean, variance;
   uint64_t dropped = 0;
   double seconds = 0;
+  std::string build_options;
 };
 
 Rendered render(const Extreme& e, const ExtremeRun& run) {
@@ -34,7 +35,7 @@ Rendered render(const Extreme& e, const ExtremeRun& run) {
   }
   RenderReport report;
   const Film film = run_render(request, report);
-  return {film.mean_rgb(), film.variance_rgb(), report.dropped, report.render_seconds};
+  return {film.mean_rgb(), film.variance_rgb(), report.dropped, report.render_seconds, report.build_options};
 }
 
 // The reference's render (the unit book scene unless the extreme names another), once per
@@ -215,6 +216,10 @@ ExtremeResult check_extreme(const Extreme& extreme, const ExtremeRun& run) {
   if (r.dropped > 0) {
     out.pass = false;
     out.detail = std::to_string(r.dropped) + " NaN/Inf samples dropped; " + out.detail;
+  }
+  if (!extreme.build_option.empty() && r.build_options.find(extreme.build_option) == std::string::npos) {
+    out.pass = false;
+    out.detail = "the kernel was built without " + extreme.build_option + " (the path this row is for); " + out.detail;
   }
   return out;
 }

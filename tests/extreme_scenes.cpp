@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "mesh_test_util.h"
 #include "render_test_util.h"
 #include "scene/scene_transform.h"
 
@@ -208,8 +209,14 @@ bool mesh_scene_available(const std::string& name) {
 Extreme transformed_mesh_scene(const std::string& name, double factor, double offset) {
   Extreme e;
   e.name = name == "cornell-box" ? "Cornell box" : name == "torus-knot" ? "torus knot" : name;
+  if (name == "cornell-box-ball") {
+    e.name = "Cornell box with a ball";
+    e.reference = cornell_box_with_ball(load_book_scene("cornell-box"));
+    e.build_option = "-DCLPT_BVH_ROOT=1";  // the walls in the loop beside the hierarchy
+  } else {
+    e.reference = load_book_scene(name);
+  }
   e.reference_name = e.name;
-  e.reference = load_book_scene(name);
   if (factor != 1) e.name += ", scale " + format_power(factor);
   if (offset != 0) e.name += ", translate " + format_power(offset);
   e.scene = translate_scene(scale_scene(e.reference, factor), {offset, offset, offset});
@@ -243,6 +250,9 @@ std::vector<Extreme> all_extremes() {
   all.push_back(transformed_mesh_scene("cornell-box", 1e-4, 0));
   all.push_back(transformed_mesh_scene("cornell-box", 1e4, 0));
   all.push_back(transformed_mesh_scene("cornell-box", 1e-4, 1e6));
+  all.push_back(transformed_mesh_scene("cornell-box-ball", 1, 1e6));
+  all.push_back(transformed_mesh_scene("cornell-box-ball", 1e-4, 0));
+  all.push_back(transformed_mesh_scene("cornell-box-ball", 1e-4, 1e6));
   if (mesh_scene_available("torus-knot")) {
     all.push_back(transformed_mesh_scene("torus-knot", 1, 1e6));
     all.push_back(transformed_mesh_scene("torus-knot", 1e-4, 1e6));

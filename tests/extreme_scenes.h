@@ -46,6 +46,9 @@ struct Extreme {
   bool megakernel = false;  // long accumulation: fewer launches per pass
   bool needs_nee = false;   // only meaningful with next-event estimation (not yet in the kernels)
   std::string known_issue;  // non-empty: expected to fail for this documented reason
+  // Non-empty: a build option the render's kernel must have had (the code path the row is there
+  // for, e.g. "-DCLPT_BVH_ROOT=1"); a render built without it fails the row.
+  std::string build_option;
 };
 
 // The book's diffuse scene as loaded from scenes/diffuse.toml.
@@ -62,7 +65,9 @@ Extreme grazing_camera(double height_over_view);
 Extreme albedo_one_furnace(double factor, double offset);
 Extreme long_accumulation(double emission, int64_t spp);
 
-// A mesh scene (scenes/NAME.toml: "cornell-box", "torus-knot") scaled by `factor` about the world
+// A mesh scene (scenes/NAME.toml: "cornell-box", "torus-knot"; "cornell-box-ball": the Cornell box
+// with a ball of 768 small triangles, mesh_test_util.h, whose walls the lockstep megakernel tests in
+// its triangle loop beside the hierarchy of the rest) scaled by `factor` about the world
 // origin, then translated by `offset` in x, y and z, against the unit scene: SameImage over a 4 x 4
 // grid of blocks (a mesh scene has no named regions), with next-event estimation as its file says,
 // 80x60 at 64 spp. The torus knot's mesh is generated (scripts/make_mesh_scene.py);

@@ -73,6 +73,15 @@ TriangleMesh random_soup(std::mt19937& rng, int count, const Vec3& center, doubl
   return m;
 }
 
+Scene cornell_box_with_ball(Scene scene) {
+  std::vector<TriangleMesh> kept;
+  for (const TriangleMesh& m : scene.meshes)
+    if (m.name != "short_block" && m.name != "tall_block") kept.push_back(m);
+  scene.meshes = kept;
+  scene.meshes.push_back(tessellated_sphere({280, 120, 280}, 110, 16, 24, lambertian(0.6), true));
+  return scene;
+}
+
 Material lambertian(double albedo) {
   Material m;
   m.type = MaterialType::Lambertian;

@@ -23,6 +23,12 @@ TriangleMesh closed_box(const Vec3& lower, const Vec3& upper, const Material& ma
 TriangleMesh random_soup(std::mt19937& rng, int count, const Vec3& center, double extent, double size,
                          const Material& material);
 
+// The Cornell box (as loaded from scenes/cornell-box.toml) with its two blocks replaced by a
+// tessellated ball of 768 small triangles: its walls, floor and ceiling (10 triangles, five meshes,
+// each triangle over 100 times the median's area) go to the triangle loop beside a hierarchy of the
+// ball's and the light's (scene/loop_spheres.h, loop_meshes).
+Scene cornell_box_with_ball(Scene cornell_box);
+
 Material lambertian(double albedo);
 Material emitter(double radiance);
 Material mirror(double reflectance);

@@ -64,12 +64,15 @@ TEST(ExtremesRobust, CameraGrazingTheFloorSeesTheHorizon) { expect_passes(grazin
 TEST(ExtremesRobust, AlbedoOneFurnaceIsExactlyTheEmission) { expect_passes(albedo_one_furnace(1e6, 1e7)); }
 
 // The mesh scenes moved far from the origin and scaled (issue 35): the Cornell box (millimetres)
-// translated by 1e6, scaled by 1e-4 and by 1e4, and both at once, and the torus knot small and far,
+// translated by 1e6, scaled by 1e-4 and by 1e4, and both at once, the Cornell box with a ball
+// (walls in the triangle loop beside the hierarchy) far, and small and far, and the torus knot small and far,
 // in robust and double: each image against the unit scene's within the films' noise, 4 x 4 blocks.
 std::vector<Extreme> mesh_extremes() {
   std::vector<Extreme> all = {transformed_mesh_scene("cornell-box", 1, 1e6), transformed_mesh_scene("cornell-box", 1e-4, 0),
                               transformed_mesh_scene("cornell-box", 1e4, 0),
-                              transformed_mesh_scene("cornell-box", 1e-4, 1e6)};
+                              transformed_mesh_scene("cornell-box", 1e-4, 1e6),
+                              transformed_mesh_scene("cornell-box-ball", 1, 1e6),
+                              transformed_mesh_scene("cornell-box-ball", 1e-4, 1e6)};
   if (mesh_scene_available("torus-knot")) all.push_back(transformed_mesh_scene("torus-knot", 1e-4, 1e6));
   return all;
 }
@@ -100,6 +103,14 @@ TEST(ExtremesMeshes, CornellBoxMovedAndScaledGivesTheUnitImage) {
   expect_mesh_extremes_pass(Precision::Robust, "Cornell box");
   if (!test_device().device().fp64) GTEST_SKIP() << "the test device has no fp64 (double preset)";
   expect_mesh_extremes_pass(Precision::Double, "Cornell box");
+}
+
+// The walls in the lockstep megakernel's triangle loop, the ball in the hierarchy below it
+// (CLPT_BVH_ROOT=1, checked by the extreme): translated by 1e6, and scaled by 1e-4 and translated.
+TEST(ExtremesMeshes, LoopBesideTheHierarchyMovedAndScaledGivesTheUnitImage) {
+  expect_mesh_extremes_pass(Precision::Robust, "Cornell box with a ball");
+  if (!test_device().device().fp64) GTEST_SKIP() << "the test device has no fp64 (double preset)";
+  expect_mesh_extremes_pass(Precision::Double, "Cornell box with a ball");
 }
 
 TEST(ExtremesMeshes, TorusKnotSmallAndFarGivesTheUnitImage) {

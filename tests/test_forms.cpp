@@ -317,20 +317,8 @@ TEST(TriangleLoop, EqualsTheHierarchy) {
   expect_same_image(room(false), room(true));
 }
 
-// The Cornell box with its two blocks replaced by a tessellated ball of 768 small triangles: its
-// walls, floor and ceiling (10 triangles, five meshes, each triangle over 100 times the median's
-// area) go to the triangle loop beside a hierarchy of the ball's and the light's (loop_meshes).
-Scene box_with_ball(Scene scene) {
-  std::vector<TriangleMesh> kept;
-  for (const TriangleMesh& m : scene.meshes)
-    if (m.name != "short_block" && m.name != "tall_block") kept.push_back(m);
-  scene.meshes = kept;
-  scene.meshes.push_back(tessellated_sphere({280, 120, 280}, 110, 16, 24, lambertian(0.6), true));
-  return scene;
-}
-
 TEST(TriangleLoop, MeshesOfLargeTrianglesStayInTheLoopBesideTheHierarchy) {
-  const Scene scene = box_with_ball(load_book_scene("cornell-box"));
+  const Scene scene = cornell_box_with_ball(load_book_scene("cornell-box"));
   const std::vector<bool> in_loop = loop_meshes(scene);
   ASSERT_EQ(in_loop.size(), 7u);
   for (size_t i = 0; i < 7; ++i)
@@ -408,7 +396,7 @@ TEST(TriangleLoop, MeshesOfLargeTrianglesStayInTheLoopBesideTheHierarchy) {
   // whole hierarchy (rolled scene loops; the wavefront; the generic kernel).
   const auto render = [](const Variant& v) {
     return render_book_variant("cornell-box", 77, [&](RenderRequest& r) {
-      r.scene = box_with_ball(r.scene);
+      r.scene = cornell_box_with_ball(r.scene);
       r.scene.settings.spp = 16;
       r.form = v.form;
       r.generic_kernel = v.generic;
