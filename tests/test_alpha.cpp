@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 #include "io/png_writer.h"
 #include "kernels/kernel_options.h"
+#include "quad_camera_scene.h"
 #include "render_test_util.h"
 #include "scene/scene_loader.h"
 #include "scene/texture_load.h"
@@ -73,28 +74,6 @@ nlohmann::json material(double alpha, const std::string& mode, double cutoff = -
 }
 const double kQuadEmission[3] = {0.2, 0.4, 0.6};
 
-// The camera scene: an orthographic camera on +z sees the quad [-1, 1]^2 at z = 0 (the glTF file
-// quad.gltf) in front of an emitter of radiance 1 at z = -1; no bounce, so a pixel is the quad's
-// emission or the emitter's, exactly.
-Scene camera_scene(const std::string& dir) {
-  const std::string text = R"(
-[render]
-max_bounces = 0
-estimator = "book"
-[camera]
-position = [0, 0, 5]
-look_at = [0, 0, 0]
-projection = "orthographic"
-height = 2
-[[mesh]]
-vertices = [[-2, -2, -1], [2, -2, -1], [2, 2, -1], [-2, 2, -1]]
-quads = [[0, 1, 2, 3]]
-material = { type = "emitter", emission = [1, 1, 1] }
-[[gltf]]
-file = "quad.gltf"
-)";
-  return load_scene_string(text, dir + "/camera.toml");
-}
 const std::vector<float> kFacingCamera = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
 
 // The shadow scene: a floor y = 0 (reflectance 0.8) lit by an emitting square of side 1 at y = 2
@@ -170,7 +149,7 @@ TEST(GltfAlpha, MaskCheckerboardIsTheQuadOrTheBackgroundInEveryForm) {
   const std::string dir = temp_dir("mask_camera");
   write_checker(dir + "/checker.png");
   std::ofstream(dir + "/quad.gltf") << quad(kFacingCamera, material(1, "MASK"), true).gltf_embedded();
-  const Scene scene = camera_scene(dir);
+  const Scene scene = quad_camera_scene(dir);
   EXPECT_TRUE(features_for_scene(scene).alpha);
   for (const Way& way : kWays) {
     const MeanVarianceImage image = render(scene, way, 4, 4, 1);
@@ -200,7 +179,7 @@ TEST(GltfAlpha, CutoffDefaultAndExplicitAndOpaqueIgnoresAlpha) {
                {material(0, ""), false, false, 0.5}};
   for (const auto& k : cases) {
     std::ofstream(dir + "/quad.gltf") << quad(kFacingCamera, k.material, false).gltf_embedded();
-    const Scene scene = camera_scene(dir);
+    const Scene scene = quad_camera_scene(dir);
     ASSERT_EQ(scene.meshes.size(), 2u);
     EXPECT_DOUBLE_EQ(scene.meshes[1].material.textures.alpha_cutoff, k.cutoff) << k.material.dump();
     EXPECT_EQ(features_for_scene(scene).alpha, k.compiled) << k.material.dump();
@@ -217,7 +196,7 @@ TEST(GltfAlpha, BlendQuadAveragesToItsCoverageInEveryForm) {
   install_scene_image_reader();
   const std::string dir = temp_dir("blend_camera");
   std::ofstream(dir + "/quad.gltf") << quad(kFacingCamera, material(0.3, "BLEND"), false).gltf_embedded();
-  const Scene scene = camera_scene(dir);
+  const Scene scene = quad_camera_scene(dir);
   const double z = sidak_z(int(std::size(kWays)) * 3);
   uint64_t seed = 11;
   for (const Way& way : kWays) {
@@ -286,7 +265,7 @@ TEST(GltfAlpha, BlendDecisionsAreTheSameInBothForms) {
   install_scene_image_reader();
   const std::string dir = temp_dir("blend_forms");
   std::ofstream(dir + "/quad.gltf") << quad(kFacingCamera, material(0.5, "BLEND"), false).gltf_embedded();
-  const Scene scene = camera_scene(dir);
+  const Scene scene = quad_camera_scene(dir);
   const MeanVarianceImage a = render(scene, kWays[0], 8, 4, 5);
   const MeanVarianceImage b = render(scene, kWays[1], 8, 4, 5);
   const MeanVarianceImage c = render(scene, kWays[2], 8, 4, 5);

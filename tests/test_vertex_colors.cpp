@@ -17,6 +17,7 @@
 #include "gltf_builder.h"
 #include "kernels/kernel_options.h"
 #include "kernels/types.h"
+#include "quad_camera_scene.h"
 #include "render_test_util.h"
 #include "scene/device_textures.h"
 #include "scene/gltf_glb.h"
@@ -315,23 +316,7 @@ TEST(GltfVertexColors, AlphaBelowTheMaskCutoffCutsTheSurface) {
     std::vector<float> rgba;
     for (int i = 0; i < 4; ++i) rgba.insert(rgba.end(), {0.5f, 0.5f, 0.5f, alpha});
     std::ofstream(dir + "/quad.gltf") << quad_gltf(material, rgba, 4);
-    const Scene scene = load_scene_string(R"(
-[render]
-max_bounces = 0
-estimator = "book"
-[camera]
-position = [0, 0, 5]
-look_at = [0, 0, 0]
-projection = "orthographic"
-height = 2
-[[mesh]]
-vertices = [[-2, -2, -1], [2, -2, -1], [2, 2, -1], [-2, 2, -1]]
-quads = [[0, 1, 2, 3]]
-material = { type = "emitter", emission = [1, 1, 1] }
-[[gltf]]
-file = "quad.gltf"
-)",
-                                          dir + "/alpha.toml");
+    const Scene scene = quad_camera_scene(dir, "alpha.toml");
     const bool cut = alpha < 0.5f;
     EXPECT_EQ(features_for_scene(scene).alpha, cut) << "alpha " << alpha;
     for (const Way& way : {kWays[0], kWays[1]}) {
