@@ -23,8 +23,12 @@ void check_traversal_anchor(const std::string& name, const std::string& option);
 // kernels intersect them) for the rays of `sample` (their origins and directions in float, from
 // t = 0): rtcIntersect1 one ray per call, and rtcIntersect16 on packets of 16 consecutive rays of
 // the sample; on `threads` threads, each passing over its own slice of the sample again and again
-// until min_seconds have passed. The scene is built once
-// (RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH: Embree's best hierarchy for tracing), not timed.
+// until min_seconds have passed. Two scenes, each built once (not timed): Embree's fastest for
+// tracing (RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH: spatial splits, its non-robust tests), and
+// Embree as Cycles builds a final render's hierarchy (RTC_SCENE_FLAG_ROBUST, which keeps rays from
+// slipping between neighbouring triangles as clpt's watertight traversal does, and
+// RTC_BUILD_QUALITY_MEDIUM, Cycles' default without spatial splits; intern/cycles/bvh/embree.cpp),
+// timed with rtcIntersect1 alone.
 struct AnchorRates {
   std::string name;            // "embree 3.13.5"
   int threads = 1;
@@ -37,6 +41,11 @@ struct AnchorRates {
   // Rays per CPU-second of this process (all its threads) over the same passes: the figures that
   // hold while other work shares the cores, beside clpt's rays per CPU-second.
   double single_per_cpu_s = 0, packet16_per_cpu_s = 0;
+  // The robust scene (as Cycles builds it): rtcIntersect1's rays/s and rays per CPU-second, the
+  // hits of one pass, its build's seconds.
+  double robust_single_per_s = 0, robust_single_per_cpu_s = 0;
+  uint64_t robust_hits = 0;
+  double robust_build_s = 0;
 };
 AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const StatsRaySample& sample, int threads,
                                double min_seconds);
