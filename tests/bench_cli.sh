@@ -141,11 +141,11 @@ assert a["rtcIntersect1_rays_per_cpu_s"] > 0 and a["rtcIntersect16_rays_per_cpu_
 # Embree as Cycles builds it (robust, medium quality): the same rays. Its exact test also reports
 # the wall a bounce ray leaves, at t of 1e-7 to 1e-5 mm, where the float origin of the sample's
 # ray (offset by the ray epsilon in double) rounded back to the wall: in this Cornell box sample
-# 489 hits against 455 and clpt's 458 (2026-12-07), so at least as many and at most 10% more.
+# 489 hits against 455 and clpt's 458 (2026-12-07): within 10% of the rays of each other.
 rb = a["robust"]
 assert rb["flags"] == "RTC_SCENE_FLAG_ROBUST" and rb["build_quality"] == "medium", rb
 assert rb["rtcIntersect1_rays_per_s"] > 0 and rb["rtcIntersect1_rays_per_cpu_s"] > 0, rb
-assert a["hits"] <= rb["hits"] <= a["hits"] + 0.1 * a["rays"], (rb, a)
+assert abs(rb["hits"] - a["hits"]) <= 0.1 * a["rays"], (rb, a)
 # clpt's own queries on the same rays (kernels/trace.cl): the same rays, about the same hits.
 t = mesh["trace"]
 assert t["rays"] == a["rays"] and abs(t["hits"] - a["hits"]) <= 0.02 * a["rays"] + 1, (t, a)
