@@ -1,15 +1,16 @@
-/* trace.cl: closest-hit queries against a scene's triangles alone, for measuring the traversal.
+/* trace.cl: closest-hit queries against a scene's triangles and hierarchy spheres alone, for
+ * measuring the traversal.
  *
- * `clpt bench --traversal-anchor` times this kernel on the same rays and triangles as the anchor
- * (Embree's rtcIntersect1, which holds the triangles alone), so that the two rates compare the
- * same queries: a small mesh's triangle loop (triangle_loop.cl) or the hierarchy (bvh.cl,
- * scene_hierarchy_hit), as the renders call them, with no shading, no loop spheres and no shadow
- * rays around them. Built with the options of the bench row's render
- * (kernel_options.cpp), so it traverses exactly as that row's kernels do; renders never build it.
+ * `clpt bench --traversal-anchor` times this kernel on the same rays and primitives as the anchor
+ * (Embree's rtcIntersect1, which holds those alone: not the loop's spheres), so that the two rates
+ * compare the same queries: a small mesh's triangle loop (triangle_loop.cl) or the hierarchy
+ * (bvh.cl, scene_hierarchy_hit), as the renders call them, with no shading, no loop spheres and no
+ * shadow rays around them. Built with the options of the bench row's render (kernel_options.cpp),
+ * so it traverses exactly as that row's kernels do; renders never build it.
  *
  * rays[8i .. 8i + 2] = origin (camera-relative, as the device scene), rays[8i + 4 .. 8i + 6] = unit
- * direction, from t = 0 (triangles are intersected for t > 0); t_out[i] = the hit distance, or
- * CLPT_NO_HIT. */
+ * direction, from t = 0 (triangles are intersected for t > 0, spheres past the scene's ray
+ * epsilon); t_out[i] = the hit distance, or CLPT_NO_HIT. */
 #include "types.h"
 #include "bvh.cl"
 

@@ -8,7 +8,8 @@
 # width (vector_width): on PoCL's CPU device a positive number of work-items, elsewhere null and
 # why; --no-vector-width: null, "not measured". Mesh rows report the hierarchy's statistics (SAH
 # cost, nodes, boxes and triangles per ray, build threads) and, with --traversal-anchor embree in
-# a build with Embree, Embree's rays/s on the same triangles and rays (else exit 2, and skipped).
+# a build with Embree, Embree's rays/s on the same triangles and rays, and on a hierarchy of spheres
+# the same spheres (else exit 2, and skipped).
 #   bench_cli.sh CLPT SOURCE_DIR WORK_DIR
 set -euo pipefail
 clpt=$1 src=$2 work=$3
@@ -116,25 +117,29 @@ test "$(grep -c "traversal: SAH cost" "$work/mesh.txt")" -eq "$(tr , '\n' <<< "$
 
 # --traversal-anchor: an unknown anchor is refused; embree, in a build with Embree, times
 # rtcIntersect1 and rtcIntersect16 on the mesh rows' triangles and rays (hits as the replica's
-# sample: the Cornell box's camera rays all hit) and clpt's own queries on them (trace.cl), and a
-# build without it says so (exit 2).
+# sample: the Cornell box's camera rays all hit), and on the hierarchy's spheres of the book's
+# scene with 40 pebbles (Embree's sphere points, from the rays' t_min), and clpt's own queries on
+# them (trace.cl): the same hits; the plain book scene (its spheres all in the loop) has neither.
+# A build without Embree says so (exit 2).
 status=0
 "$clpt" bench --traversal-anchor nosuch --devices cpu > /dev/null 2> "$work/anchor.err" || status=$?
 test "$status" -eq 2 || { echo "FAIL: --traversal-anchor nosuch exited $status, not 2"; exit 1; }
 grep -q -- "--traversal-anchor: unknown anchor 'nosuch'" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
+python3 scripts/many_spheres_scene.py --count 40 "$work/pebbles.toml"
 status=0
-"$clpt" bench --no-vector-width --traversal-anchor embree --scenes scenes/cornell-box.toml,scenes/diffuse.toml --width 16 \
+"$clpt" bench --no-vector-width --traversal-anchor embree --scenes scenes/cornell-box.toml,scenes/diffuse.toml,"$work/pebbles.toml" --width 16 \
     --height 16 --spp 1 --warmup 0 --repeat 1 --devices cpu --forms megakernel --json "$work/anchor.json" \
     > "$work/anchor.txt" 2> "$work/anchor.err" || status=$?
 if [[ $status -eq 0 ]]; then
   python3 - "$work/anchor.json" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))["rows"]
-assert len(rows) == 2, rows
-mesh, spheres = rows
-assert "anchor" not in spheres, spheres  # no triangles: no anchor
+assert len(rows) == 3, rows
+mesh, spheres, pebbles = rows
+assert "anchor" not in spheres and "trace" not in spheres, spheres  # every sphere in the loop: no anchor
 a = mesh["anchor"]
 assert a["name"].startswith("embree ") and a["threads"] >= 1, a
+assert a["triangles"] == 32 and a["spheres"] == 0, a
 assert a["rays"] == mesh["traversal"]["rays"] and a["hits"] >= 200, a
 assert a["rtcIntersect1_rays_per_s"] > 0 and a["rtcIntersect16_rays_per_s"] > 0, a
 assert a["rtcIntersect1_rays_per_cpu_s"] > 0 and a["rtcIntersect16_rays_per_cpu_s"] > 0, a
@@ -150,7 +155,17 @@ assert abs(rb["hits"] - a["hits"]) <= 0.1 * a["rays"], (rb, a)
 t = mesh["trace"]
 assert t["rays"] == a["rays"] and abs(t["hits"] - a["hits"]) <= 0.02 * a["rays"] + 1, (t, a)
 assert t["rays_per_s"] > 0 and t["rays_per_cpu_s"] > 0 and t["launch_rays"] >= t["rays"], t
+# The pebbles: the 40 small spheres in the hierarchy (the room's 8 in the loop), as Embree's sphere
+# points; both sides test them alone from each ray's t_min, so the hits agree but for rays that
+# graze a pebble (float against Embree's own sphere test). Some rays do hit them.
+pa, pt = pebbles["anchor"], pebbles["trace"]
+assert pebbles["hierarchy_spheres"] == 40 and pa["spheres"] == 40 and pa["triangles"] == 0, pa
+assert pa["rays"] == pebbles["traversal"]["rays"] == pt["rays"], (pa, pt)
+assert pa["hits"] > 0 and abs(pt["hits"] - pa["hits"]) <= 0.01 * pa["rays"] + 1, (pa, pt)
+assert abs(pa["robust"]["hits"] - pa["hits"]) <= 0.01 * pa["rays"] + 1, pa
+assert pa["rtcIntersect1_rays_per_s"] > 0 and pt["rays_per_s"] > 0, (pa, pt)
 PY
+  grep -q "anchor: clpt .* the same 40 spheres and .* rays: rtcIntersect1" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
   grep -q "anchor: clpt .* rtcIntersect1 .* rtcIntersect16 .* robust, as Cycles builds it: rtcIntersect1" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
   grep -q "traversal alone: clpt (trace.cl" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
 else

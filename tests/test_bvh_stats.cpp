@@ -391,5 +391,39 @@ TEST(TraversalTrace, HitsWhatTheReplicaHitsInBothWays) {
   }
 }
 
+// The same for spheres in the hierarchy (the anchor's sphere rows): 40 balls alone in the book's
+// camera view, too many for the loop, so that every one is a hierarchy primitive and the replica's
+// hits are the hierarchy's alone, as the trace's. Camera rays and their bounces: a bounce ray leaves
+// a ball from the scene's ray epsilon, as trace.cl's sphere tests start, so it may hit another.
+TEST(TraversalTrace, HitsWhatTheReplicaHitsOnSpheresInTheHierarchy) {
+  RenderRequest request;
+  request.scene = load_scene_file(std::string(CLPT_SOURCE_DIR) + "/scenes/diffuse.toml");
+  const Material material = request.scene.spheres.front().material;
+  request.scene.spheres.clear();
+  std::mt19937 rng(35);
+  std::uniform_real_distribution<double> along(-2.5, 3.5), across(-2.5, 2.5), size(0.2, 0.5);
+  for (int i = 0; i < 40; ++i) {
+    Sphere ball;
+    ball.name = "ball" + std::to_string(i);
+    ball.radius = size(rng);
+    ball.center = {along(rng), ball.radius + 0.5 * size(rng), across(rng)};
+    ball.material = material;
+    request.scene.spheres.push_back(ball);
+  }
+  const DeviceInfo& device = test_device().device();
+  const DeviceScene ds = make_device_scene(request.scene, 32, 24);
+  ASSERT_EQ(ds.loop_spheres, 0u);
+  ASSERT_EQ(ds.bvh.sphere_order.size(), 40u);
+  const StatsRaySample sample = stats_rays(ds, 32, 24);
+  const TraversalStats replica = measure_traversal(ds, sample);
+  const uint64_t replica_hits = replica.camera.hits + replica.bounce.hits;
+  ASSERT_GT(replica.camera.hits, sample.camera_rays / 10);  // the balls fill a good part of the view
+  const RenderPlan plan = plan_render(request, {device});
+  const TraceRates t = time_clpt_trace(device, plan.devices.front().features, ds, make_params(request.scene, ds), sample, 0.0);
+  EXPECT_EQ(t.rays, sample.rays.size());
+  EXPECT_NEAR(double(t.hits), double(replica_hits), 0.01 * double(sample.rays.size()) + 1);
+  EXPECT_GT(t.per_s, 0);
+}
+
 }  // namespace
 }  // namespace clpt::test

@@ -111,11 +111,11 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "docs/performance.md \"Traversal\")")
       ->delimiter(',');
   cmd->add_option("--traversal-anchor", o->traversal_anchor,
-                  "embree: every row with triangles also times Embree's rtcIntersect1 and rtcIntersect16 on the "
-                  "same triangles and rays as its traversal statistics (only in a build with Embree; "
+                  "embree: every row with triangles, or spheres in a hierarchy, also times Embree's rtcIntersect1 "
+                  "and rtcIntersect16 on the same primitives and rays as its traversal statistics (only in a build with Embree; "
                   "docs/performance.md \"Traversal\"); implies --traversal-alone");
   cmd->add_flag("--traversal-alone", o->traversal_alone,
-                "Every row with triangles also times clpt's closest-hit queries alone (kernels/trace.cl with the "
+                "Every row with triangles, or spheres in a hierarchy, also times clpt's closest-hit queries alone (kernels/trace.cl with the "
                 "row's options, no shading) on the rays of its traversal statistics: rays/s, per CPU-second, hits");
   cmd->add_flag("--no-vector-width", o->no_vector_width,
                 "Do not measure each row's vector width (one extra small cold compile per row; the lanes "

@@ -103,9 +103,15 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
     row.spheres_per_ray = counts.per_ray(counts.hierarchy_spheres);
     row.loop_triangles_per_ray = counts.per_ray(counts.loop_triangles);
   }
-  if (!c.traversal_anchor.empty() && row.triangles > 0)
-    row.anchor = time_embree_anchor(ds.triangles, sample, int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
-  if (c.traversal_alone && row.triangles > 0)
+  // Rows whose queries go past the sphere loop: triangles (in the hierarchy or the triangle loop), or
+  // spheres in the hierarchy. trace.cl and the anchor test those primitives alone.
+  const bool queries_beyond_loop = row.triangles > 0 || row.hierarchy_spheres > 0;
+  if (!c.traversal_anchor.empty() && queries_beyond_loop) {
+    const std::vector<GpuSphere> hierarchy_spheres(ds.spheres.begin() + ds.loop_spheres, ds.spheres.end());
+    row.anchor = time_embree_anchor(ds.triangles, hierarchy_spheres, sample,
+                                    int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
+  }
+  if (c.traversal_alone && queries_beyond_loop)
     row.trace = time_clpt_trace(device, planned.features, ds, make_params(scene, ds), sample, 0.5);
   if (row.triangles > 0)
     row.device_bytes_per_triangle =
@@ -236,6 +242,14 @@ nlohmann::json vector_width_json(const BenchRow& r) {
           {"blockers", blockers}};
 }
 
+// What the anchor's scene holds, for its line: "32 triangles", "1000 spheres", or both.
+std::string anchor_primitives(const AnchorRates& a) {
+  std::string out;
+  if (a.triangles > 0) out = std::to_string(a.triangles) + " triangles";
+  if (a.spheres > 0) out += (out.empty() ? "" : " and ") + std::to_string(a.spheres) + " spheres";
+  return out;
+}
+
 // clpt's closest-hit rays per CPU-second: its paths per CPU-second times segments per path.
 double rays_per_cpu_s(const BenchRow& r) {
   return r.paths_per_s.median > 0 ? r.paths_per_cpu_s.median * r.segments_per_s.median / r.paths_per_s.median : 0;
@@ -347,12 +361,12 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
       const AnchorRates& a = *r.anchor;
       const double clpt_cpu = rays_per_cpu_s(r);
       std::snprintf(line, sizeof line,
-                    "    anchor: clpt %.2f M rays/s (segments/s), %.2f M/CPU-s; %s on %d thread%s, the same triangles "
+                    "    anchor: clpt %.2f M rays/s (segments/s), %.2f M/CPU-s; %s on %d thread%s, the same %s "
                     "and %llu rays: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s, rtcIntersect16 %.2f M rays/s, %.2f "
                     "M/CPU-s; robust, as Cycles builds it: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s; "
                     "clpt/rtcIntersect1 %.3f (per CPU-s %.3f)\n",
                     r.segments_per_s.median * 1e-6, clpt_cpu * 1e-6, a.name.c_str(), a.threads, a.threads == 1 ? "" : "s",
-                    static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
+                    anchor_primitives(a).c_str(), static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
                     a.packet16_per_s * 1e-6, a.packet16_per_cpu_s * 1e-6, a.robust_single_per_s * 1e-6,
                     a.robust_single_per_cpu_s * 1e-6,
                     a.single_per_s > 0 ? r.segments_per_s.median / a.single_per_s : 0.0,
@@ -421,6 +435,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
                           {"stage_seconds", stages}, {"vector_width", vector_width_json(r)}};
     if (r.anchor)
       row["anchor"] = {{"name", r.anchor->name}, {"threads", r.anchor->threads}, {"rays", r.anchor->rays},
+                       {"triangles", r.anchor->triangles}, {"spheres", r.anchor->spheres},
                        {"hits", r.anchor->hits}, {"build_s", r.anchor->build_s},
                        {"rtcIntersect1_rays_per_s", r.anchor->single_per_s},
                        {"rtcIntersect16_rays_per_s", r.anchor->packet16_per_s},

@@ -1,7 +1,7 @@
 // clpt's own closest-hit rate on the traversal statistics' rays (`clpt bench --traversal-alone`, and
 // beside Embree's with `--traversal-anchor`):
-// kernels/trace.cl, built with a bench row's kernel options, queries the row's triangles alone
-// (the triangle loop or the hierarchy, as the row's render does) for the rays of the statistics'
+// kernels/trace.cl, built with a bench row's kernel options, queries the row's triangles and
+// hierarchy spheres alone (the triangle loop or the hierarchy, as the row's render does) for the rays of the statistics'
 // sample, so that its rays/s compares with Embree's rtcIntersect1 on the same queries
 // (tools/traversal_anchor.h). Needs no Embree; renders never build it.
 #pragma once
