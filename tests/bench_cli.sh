@@ -166,6 +166,12 @@ assert abs(pa["robust"]["hits"] - pa["hits"]) <= 0.01 * pa["rays"] + 1, pa
 assert pa["rtcIntersect1_rays_per_s"] > 0 and pt["rays_per_s"] > 0, (pa, pt)
 PY
   grep -q "anchor: clpt .* the same 40 spheres and .* rays: rtcIntersect1" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
+  # scripts/target_budget.py (docs/performance.md, "What limits the speed") reads these rows: the
+  # plain scene is the book's, every anchored row gets a line, the target's budget where asked.
+  python3 scripts/target_budget.py --target pebbles=0.5 "$work/anchor.json" > "$work/budget.txt"
+  grep -q "^plain scene: [0-9]" "$work/budget.txt" || { cat "$work/budget.txt"; exit 1; }
+  grep -q "^| scenes/cornell-box.toml | [0-9][0-9-]* | [0-9.-]* | - | [0-9]" "$work/budget.txt" || { cat "$work/budget.txt"; exit 1; }
+  grep -q "^| .*pebbles.toml | [0-9][0-9-]* | [0-9.-]* | [0-9][0-9-]* | [0-9]" "$work/budget.txt" || { cat "$work/budget.txt"; exit 1; }
   grep -q "anchor: clpt .* rtcIntersect1 .* rtcIntersect16 .* robust, as Cycles builds it: rtcIntersect1" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
   grep -q "traversal alone: clpt (trace.cl" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
 else
