@@ -125,6 +125,13 @@ status=0
 "$clpt" bench --traversal-anchor nosuch --devices cpu > /dev/null 2> "$work/anchor.err" || status=$?
 test "$status" -eq 2 || { echo "FAIL: --traversal-anchor nosuch exited $status, not 2"; exit 1; }
 grep -q -- "--traversal-anchor: unknown anchor 'nosuch'" "$work/anchor.err" || { cat "$work/anchor.err"; exit 1; }
+# --traversal-anchor-width: 4 or 8 only, and only with an anchor (exit 2 naming the option).
+status=0
+"$clpt" bench --traversal-anchor-width 5 --devices cpu > /dev/null 2> "$work/width.err" || status=$?
+test "$status" -eq 2 && grep -q -- "--traversal-anchor-width" "$work/width.err" || { cat "$work/width.err"; exit 1; }
+status=0
+"$clpt" bench --traversal-anchor-width 4 --devices cpu > /dev/null 2> "$work/width.err" || status=$?
+test "$status" -eq 2 && grep -q -- "--traversal-anchor-width: needs --traversal-anchor embree" "$work/width.err" || { cat "$work/width.err"; exit 1; }
 python3 scripts/many_spheres_scene.py --count 40 "$work/pebbles.toml"
 status=0
 "$clpt" bench --no-vector-width --traversal-anchor embree --scenes scenes/cornell-box.toml,scenes/diffuse.toml,"$work/pebbles.toml" --width 16 \
@@ -166,6 +173,21 @@ assert abs(pa["robust"]["hits"] - pa["hits"]) <= 0.01 * pa["rays"] + 1, pa
 assert pa["rtcIntersect1_rays_per_s"] > 0 and pt["rays_per_s"] > 0, (pa, pt)
 PY
   grep -q "anchor: clpt .* the same 40 spheres and .* rays: rtcIntersect1" "$work/anchor.txt" || { cat "$work/anchor.txt"; exit 1; }
+  # Embree's choice of tree when no width is given (JSON tri_accel null); --traversal-anchor-width
+  # 4 forces its 4-wide tree over the fastest scene's triangles, named on the line and in the JSON,
+  # the same hits.
+  python3 -c 'import json, sys; assert json.load(open(sys.argv[1]))["rows"][0]["anchor"]["tri_accel"] is None' "$work/anchor.json"
+  "$clpt" bench --no-vector-width --traversal-anchor embree --traversal-anchor-width 4 --scenes scenes/cornell-box.toml \
+      --width 16 --height 16 --spp 1 --warmup 0 --repeat 1 --devices cpu --forms megakernel --json "$work/anchor4.json" \
+      > "$work/anchor4.txt"
+  grep -q "anchor: clpt .* rays: rtcIntersect1 (bvh4.triangle4) [0-9.]* M rays/s" "$work/anchor4.txt" || { cat "$work/anchor4.txt"; exit 1; }
+  python3 - "$work/anchor4.json" "$work/anchor.json" <<'PY'
+import json, sys
+a4 = json.load(open(sys.argv[1]))["rows"][0]["anchor"]
+a = json.load(open(sys.argv[2]))["rows"][0]["anchor"]
+assert a4["tri_accel"] == "bvh4.triangle4" and a4["rtcIntersect1_rays_per_s"] > 0, a4
+assert abs(a4["hits"] - a["hits"]) <= 0.01 * a["rays"] + 1, (a4["hits"], a["hits"])
+PY
   # scripts/target_budget.py (docs/performance.md, "What limits the speed") reads these rows: the
   # plain scene is the book's, every anchored row gets a line, the target's budget where asked.
   python3 scripts/target_budget.py --target pebbles=0.5 "$work/anchor.json" > "$work/budget.txt"

@@ -23,7 +23,7 @@ struct BenchOptions {
   std::string sampler = "jitter";
   std::string cpu_vector_bits = "auto";
   std::string sphere_reads = "auto";
-  std::string json, baseline, traversal_anchor;
+  std::string json, baseline, traversal_anchor, traversal_anchor_width = "auto";
   double tolerance = 10;
   bool no_vector_width = false, traversal_alone = false;
 };
@@ -53,6 +53,11 @@ int run(BenchConfig config, const BenchOptions& o) {
   config.measure_vector_width = !o.no_vector_width;
   if (!o.traversal_anchor.empty()) check_traversal_anchor(o.traversal_anchor, "--traversal-anchor");
   config.traversal_anchor = o.traversal_anchor;
+  if (o.traversal_anchor_width != "auto") {
+    if (o.traversal_anchor.empty())
+      throw Error(ExitCode::Usage, "--traversal-anchor-width: needs --traversal-anchor embree");
+    config.traversal_anchor_width = std::stoi(o.traversal_anchor_width);  // CLI11 checked: 4 or 8
+  }
   config.traversal_alone = o.traversal_alone || !o.traversal_anchor.empty();
   const std::vector<BenchRow> rows = run_bench(config, ranks.coordinator());
   if (!ranks.coordinator()) return 0;  // rank 0 prints, writes and compares
@@ -114,6 +119,12 @@ std::function<int()> add_bench_command(CLI::App& app) {
                   "embree: every row with triangles, or spheres in a hierarchy, also times Embree's rtcIntersect1 "
                   "and rtcIntersect16 on the same primitives and rays as its traversal statistics (only in a build with Embree; "
                   "docs/performance.md \"Traversal\"); implies --traversal-alone");
+  cmd->add_option("--traversal-anchor-width", o->traversal_anchor_width,
+                  "auto (Embree's choice: 8 on AVX machines), 4 or 8: the width of the tree of the anchor's "
+                  "fastest scene over triangles (Embree's tri_accel bvh4.triangle4 or bvh8.triangle4), e.g. 4 "
+                  "to time Embree at clpt's width; the robust scene stays as Cycles builds it")
+      ->check(CLI::IsMember({"auto", "4", "8"}))
+      ->capture_default_str();
   cmd->add_flag("--traversal-alone", o->traversal_alone,
                 "Every row with triangles, or spheres in a hierarchy, also times clpt's closest-hit queries alone (kernels/trace.cl with the "
                 "row's options, no shading) on the rays of its traversal statistics: rays/s, per CPU-second, hits");

@@ -109,7 +109,8 @@ BenchRow bench_cell(const BenchConfig& c, const Scene& scene, const DeviceInfo& 
   if (!c.traversal_anchor.empty() && queries_beyond_loop) {
     const std::vector<GpuSphere> hierarchy_spheres(ds.spheres.begin() + ds.loop_spheres, ds.spheres.end());
     row.anchor = time_embree_anchor(ds.triangles, hierarchy_spheres, sample,
-                                    int(std::max(1u, std::thread::hardware_concurrency())), 0.5);
+                                    int(std::max(1u, std::thread::hardware_concurrency())), 0.5,
+                                    c.traversal_anchor_width);
   }
   if (c.traversal_alone && queries_beyond_loop)
     row.trace = time_clpt_trace(device, planned.features, ds, make_params(scene, ds), sample, 0.5);
@@ -362,11 +363,12 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
       const double clpt_cpu = rays_per_cpu_s(r);
       std::snprintf(line, sizeof line,
                     "    anchor: clpt %.2f M rays/s (segments/s), %.2f M/CPU-s; %s on %d thread%s, the same %s "
-                    "and %llu rays: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s, rtcIntersect16 %.2f M rays/s, %.2f "
+                    "and %llu rays: rtcIntersect1%s %.2f M rays/s, %.2f M/CPU-s, rtcIntersect16 %.2f M rays/s, %.2f "
                     "M/CPU-s; robust, as Cycles builds it: rtcIntersect1 %.2f M rays/s, %.2f M/CPU-s; "
                     "clpt/rtcIntersect1 %.3f (per CPU-s %.3f)\n",
                     r.segments_per_s.median * 1e-6, clpt_cpu * 1e-6, a.name.c_str(), a.threads, a.threads == 1 ? "" : "s",
-                    anchor_primitives(a).c_str(), static_cast<unsigned long long>(a.rays), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
+                    anchor_primitives(a).c_str(), static_cast<unsigned long long>(a.rays),
+                    a.tri_accel.empty() ? "" : (" (" + a.tri_accel + ")").c_str(), a.single_per_s * 1e-6, a.single_per_cpu_s * 1e-6,
                     a.packet16_per_s * 1e-6, a.packet16_per_cpu_s * 1e-6, a.robust_single_per_s * 1e-6,
                     a.robust_single_per_cpu_s * 1e-6,
                     a.single_per_s > 0 ? r.segments_per_s.median / a.single_per_s : 0.0,
@@ -436,6 +438,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const BenchConfig& c) 
     if (r.anchor)
       row["anchor"] = {{"name", r.anchor->name}, {"threads", r.anchor->threads}, {"rays", r.anchor->rays},
                        {"triangles", r.anchor->triangles}, {"spheres", r.anchor->spheres},
+                       {"tri_accel", r.anchor->tri_accel.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.anchor->tri_accel)},
                        {"hits", r.anchor->hits}, {"build_s", r.anchor->build_s},
                        {"rtcIntersect1_rays_per_s", r.anchor->single_per_s},
                        {"rtcIntersect16_rays_per_s", r.anchor->packet16_per_s},

@@ -50,11 +50,15 @@ struct BenchConfig {
   // Measure each row's vector width (tools/vector_width.h): one extra cold compile per row in a
   // child process. Only where this process is the clpt executable (the probe reruns it).
   bool measure_vector_width = false;
-  // --traversal-anchor: "" (none) or "embree": every row with triangles also times Embree's
-  // closest-hit queries on its triangles and the statistics' rays (tools/traversal_anchor.h).
+  // --traversal-anchor: "" (none) or "embree": every row with triangles or hierarchy spheres also
+  // times Embree's closest-hit queries on them and the statistics' rays (tools/traversal_anchor.h).
   std::string traversal_anchor;
-  // --traversal-alone (and --traversal-anchor): every row with triangles also times clpt's own
-  // closest-hit queries on the statistics' rays (kernels/trace.cl; tools/traversal_trace.h).
+  // --traversal-anchor-width: 0 (Embree's choice), 4 or 8: the width of the anchor's fastest
+  // scene's tree over triangles (AnchorRates::tri_accel).
+  int traversal_anchor_width = 0;
+  // --traversal-alone (and --traversal-anchor): every row with triangles or hierarchy spheres also
+  // times clpt's own closest-hit queries on the statistics' rays (kernels/trace.cl;
+  // tools/traversal_trace.h).
   bool traversal_alone = false;
 };
 

@@ -204,7 +204,7 @@ void build_scene(EmbreeScene& e, const std::vector<GpuTriangle>& triangles, cons
 }  // namespace
 
 AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const std::vector<GpuSphere>& spheres,
-                               const StatsRaySample& sample, int threads, double min_seconds) {
+                               const StatsRaySample& sample, int threads, double min_seconds, int width) {
   AnchorRates out;
   out.name = "embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
              std::to_string(RTC_VERSION_PATCH);
@@ -215,9 +215,13 @@ AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const 
   if ((triangles.empty() && spheres.empty()) || sample.rays.empty()) return out;
   const bool with_t_min = !spheres.empty();
   const std::string config = "threads=" + std::to_string(out.threads);
+  if (width != 0 && width != 4 && width != 8)
+    throw Error(ExitCode::Usage, "--traversal-anchor-width: " + std::to_string(width) + " (expected 4 or 8)");
+  if (width != 0) out.tri_accel = "bvh" + std::to_string(width) + ".triangle4";
   {
     EmbreeScene e;
-    e.device = rtcNewDevice(config.c_str());
+    const std::string fastest = out.tri_accel.empty() ? config : config + ",tri_accel=" + out.tri_accel;
+    e.device = rtcNewDevice(fastest.c_str());
     if (!e.device) throw Error(ExitCode::Failure, "--traversal-anchor embree: rtcNewDevice failed");
     build_scene(e, triangles, spheres, RTC_SCENE_FLAG_NONE, RTC_BUILD_QUALITY_HIGH, out.build_s);
     out.single_per_s = rate(pass_single, e.scene, sample.rays, with_t_min, out.threads, min_seconds, out.hits, out.single_per_cpu_s);
@@ -236,7 +240,7 @@ AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const 
 }
 #else
 AnchorRates time_embree_anchor(const std::vector<GpuTriangle>&, const std::vector<GpuSphere>&, const StatsRaySample&, int,
-                               double) {
+                               double, int) {
   throw Error(ExitCode::Usage, "--traversal-anchor embree: this clpt was built without Embree");
 }
 #endif

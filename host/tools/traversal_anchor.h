@@ -31,9 +31,13 @@ void check_traversal_anchor(const std::string& name, const std::string& option);
 // non-robust tests), and Embree as Cycles builds a final render's hierarchy (RTC_SCENE_FLAG_ROBUST,
 // which keeps rays from slipping between neighbouring triangles as clpt's watertight traversal
 // does, and RTC_BUILD_QUALITY_MEDIUM, Cycles' default without spatial splits;
-// intern/cycles/bvh/embree.cpp), timed with rtcIntersect1 alone.
+// intern/cycles/bvh/embree.cpp), timed with rtcIntersect1 alone. `width` 4 or 8 builds the fastest
+// scene's triangles into Embree's tree of that width with its four-triangle leaves
+// (tri_accel=bvh4.triangle4 or bvh8.triangle4, Embree's device configuration); 0 leaves Embree its
+// choice.
 struct AnchorRates {
   std::string name;            // "embree 3.13.5"
+  std::string tri_accel;       // the fastest scene's forced tree over triangles ("bvh4.triangle4"), or ""
   int threads = 1;
   uint64_t triangles = 0, spheres = 0;  // the primitives Embree holds
   uint64_t rays = 0;           // per pass: the sample's rays
@@ -52,6 +56,6 @@ struct AnchorRates {
   double robust_build_s = 0;
 };
 AnchorRates time_embree_anchor(const std::vector<GpuTriangle>& triangles, const std::vector<GpuSphere>& spheres,
-                               const StatsRaySample& sample, int threads, double min_seconds);
+                               const StatsRaySample& sample, int threads, double min_seconds, int width = 0);
 
 }  // namespace clpt
