@@ -248,9 +248,11 @@ CLPT_INLINE void bvh_triangle_lane(const SceneBuffers* scene, const ShearedRay* 
  * material's alpha cuts the surface away (alpha.cl, seed `alpha_seed`) is no hit.
  *
  * At a node, the four child boxes are tested at once (bvh_node_entries); a single hit child is
- * visited at once, several are sorted by entry distance (a 5-comparator network), the nearest visited (an interior child is
- * opened next, a leaf's primitives tested), the others pushed farthest first, so that they come
- * off the stack nearest first. A stack entry names a child slot (node << 2 | slot); popped, its
+ * visited at once; of two, the nearer is visited and the other pushed (one comparison); three or
+ * four are sorted by entry distance (a 5-comparator network), the nearest visited (an interior
+ * child is opened next, a leaf's primitives tested), the others pushed farthest first, so that
+ * they come off the stack nearest first. The two-child shortcut orders them as the network would,
+ * ties included, so the walk is the same either way. A stack entry names a child slot (node << 2 | slot); popped, its
  * box is tested again against the hit->t found since it was pushed, and it is skipped when wholly
  * behind it. */
 CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o, Vec3 d, real t_min,
@@ -282,7 +284,15 @@ CLPT_INLINE void bvh_traverse(const SceneBuffers* scene, uint node_count, Vec3 o
       const bool h0 = t.s0 < CLPT_NO_HIT, h1 = t.s1 < CLPT_NO_HIT, h2 = t.s2 < CLPT_NO_HIT, h3 = t.s3 < CLPT_NO_HIT;
       const uint hits = (uint)h0 + (uint)h1 + (uint)h2 + (uint)h3;
       uint s0 = 0u;
-      if (hits > 1u) {
+      if (hits == 2u) {
+        /* Two hit children, a the lower slot and b the higher: the nearer visited, the other
+         * pushed; on a tie a first, as the sorting network below orders them. */
+        const uint a = h0 ? 0u : (h1 ? 1u : 2u), b = h3 ? 3u : (h2 ? 2u : 1u);
+        const real ta = h0 ? t.s0 : (h1 ? t.s1 : t.s2), tb = h3 ? t.s3 : (h2 ? t.s2 : t.s1);
+        const bool a_first = ta <= tb;
+        s0 = a_first ? a : b;
+        stack[depth++] = (node << 2) | (a_first ? b : a);
+      } else if (hits > 1u) {
         real t0 = t.s0, t1 = t.s1, t2 = t.s2, t3 = t.s3;
         uint s1 = 1u, s2 = 2u, s3 = 3u;
         bvh_order(&t0, &s0, &t1, &s1);
