@@ -13,9 +13,12 @@
 #                         kernels' registers and spills, the first picture, each step's time
 #   report.log            everything the steps printed (devices, build, verify, bench, render)
 #   verify.json           `clpt verify` of every GPU against the bundle's PoCL films
-#   bench.json            `clpt bench`: the book's scenes and the mesh scenes, both forms, every preset
-#   traversal.json        `clpt bench --traversal-alone`: the mesh scenes' closest-hit queries alone
-#                         (kernels/trace.cl, no shading), rays/s and hits per device
+#   bench.json            `clpt bench`: the book's scenes, the book's scene with 1000 small spheres
+#                         (the bundle's scenes/many-spheres.toml) and the mesh scenes, both forms,
+#                         every preset
+#   traversal.json        `clpt bench --traversal-alone`: the closest-hit queries alone of the mesh
+#                         scenes and the 1000 spheres (kernels/trace.cl, no shading), rays/s and
+#                         hits per device
 #   kernel-budget.tsv     `clpt kernels budget`: the driver's own figures per kernel of every
 #                         covering variant (registers and spills where it reports them: NVIDIA)
 #   first-picture.pfm     the README's first picture (scripts/render.sh's render) as a raw film,
@@ -41,8 +44,9 @@ done
 # What the steps render: on a GPU, the bench at 640x480 and 256 spp (the H200 ran 64 spp of the
 # book's scenes in 10-20 ms, too short a run to time well: docs/performance.md, "GPUs") and the
 # first picture as scripts/render.sh renders it; --quick, tiny sizes.
-scenes=scenes/diffuse.toml,scenes/specular.toml,scenes/glass.toml,scenes/cornell-box.toml,scenes/torus-knot.toml
-mesh_scenes=scenes/cornell-box.toml,scenes/torus-knot.toml
+# scenes/many-spheres.toml is the bundle's (scripts/offline-bundle.sh writes it).
+scenes=scenes/diffuse.toml,scenes/specular.toml,scenes/glass.toml,scenes/many-spheres.toml,scenes/cornell-box.toml,scenes/torus-knot.toml
+traversal_scenes=scenes/cornell-box.toml,scenes/torus-knot.toml,scenes/many-spheres.toml
 precisions=fast,robust,double
 bench_size=(--width 640 --height 480 --spp 256 --warmup 1 --repeat 3)
 traversal_size=(--width 640 --height 480)
@@ -53,7 +57,7 @@ limits=(devices=60 build=150 verify=90 bench=180 traversal=30 picture=30 budget=
 if [[ $quick -eq 1 ]]; then
   limits=(devices=60 build=900 verify=300 bench=300 traversal=120 picture=120 budget=120)
   scenes=scenes/diffuse.toml,scenes/cornell-box.toml
-  mesh_scenes=scenes/cornell-box.toml
+  traversal_scenes=scenes/cornell-box.toml,scenes/many-spheres.toml
   traversal_size=(--width 32 --height 24)
   precisions=robust
   bench_size=(--width 32 --height 24 --spp 1 --warmup 0 --repeat 1)
@@ -127,7 +131,7 @@ write_summary() {
     echo '```'
     sed -n '/^== bench: /,/^== bench: exit/p' "$log" | grep -vE '^(== |    |bench: )' | head -80
     echo '```'
-    echo "## Traversal alone ($mesh_scenes; kernels/trace.cl, closest-hit queries without shading)"
+    echo "## Traversal alone ($traversal_scenes; kernels/trace.cl, closest-hit queries without shading)"
     echo '```'
     sed -n '/^== traversal: /,/^== traversal: exit/p' "$log" |
       awk '/^scenes\// {print $1, $2, $3; next} /traversal alone:/ {print}' | cut -c1-150 | head -20
@@ -194,9 +198,10 @@ step verify "$clpt" verify --device "$devices" --reference films --reference-dir
   --json "$out/verify.json"
 step bench "$clpt" bench --devices "$devices" --scenes "$scenes" --forms megakernel,wavefront \
   --precisions "$precisions" "${bench_size[@]}" --json "$out/bench.json"
-# The traversal alone on the mesh scenes (a hierarchy on GPUs; docs/performance.md, "Traversal"):
-# one tiny render per row, then 0.5 s of closest-hit queries on the statistics' rays.
-step traversal "$clpt" bench --devices "$devices" --scenes "$mesh_scenes" --forms megakernel --precisions robust \
+# The traversal alone on the mesh scenes and the 1000 spheres (a hierarchy on GPUs;
+# docs/performance.md, "Traversal"): one tiny render per row, then 0.5 s of closest-hit queries on
+# the statistics' rays.
+step traversal "$clpt" bench --devices "$devices" --scenes "$traversal_scenes" --forms megakernel --precisions robust \
   --traversal-alone --no-vector-width "${traversal_size[@]}" --spp 1 --warmup 0 --repeat 1 --json "$out/traversal.json"
 # scripts/render.sh's render of the default scene (README's first picture), as a raw film.
 step picture "$clpt" render scenes/diffuse.toml --device "$first" --estimator nee --sampler sobol \

@@ -11,7 +11,9 @@
 #                  core builds against that such a machine lacks. No OpenImageIO: the core writes
 #                  raw PFM films, and `clpt verify` compares them there.
 #   DIR/src/       this tree: tracked files and untracked ones git does not ignore, plus the
-#                  generated torus-knot mesh (scenes/meshes/torus_knot.ply)
+#                  generated torus-knot mesh (scenes/meshes/torus_knot.ply) and the book's scene
+#                  with 1000 small spheres (scenes/many-spheres.toml, scripts/many_spheres_scene.py:
+#                  issue 35's sphere hierarchy, which the report benches and traverses)
 #   DIR/films/     reference renders of `clpt verify` on this machine's PoCL CPU device, with
 #                  films.json (their size, spp, seed and device): the GPU's verify compares with
 #                  these, since that machine may have no PoCL (`verify --reference films`)
@@ -67,6 +69,7 @@ clpt_log "copying the tree"
 mkdir -p "$out/src"
 (cd "$CLPT_ROOT" && { git ls-files -co --exclude-standard -z; printf 'scenes/meshes/torus_knot.ply\0'; } |
    tar --null -T - -cf - ) | tar -xf - -C "$out/src"
+python3 "$CLPT_ROOT/scripts/many_spheres_scene.py" "$out/src/scenes/many-spheres.toml"
 
 clpt_log "rendering the reference films on PoCL"
 if [[ ! -x "$CLPT_BUILD/clpt" ]]; then

@@ -70,8 +70,9 @@ assert cells == {(s, f) for s in ("scenes/diffuse.toml", "scenes/cornell-box.tom
                  for f in ("megakernel", "wavefront")}, cells
 assert all(r["paths_per_s"]["median"] > 0 for r in b["rows"]), b["rows"]
 t = json.load(open(os.path.join(out, "traversal.json")))["rows"]
-assert [r["scene"] for r in t] == ["scenes/cornell-box.toml"], t
-assert t[0]["trace"]["hits"] > 0 and t[0]["trace"]["rays_per_s"] > 0, t
+assert [r["scene"] for r in t] == ["scenes/cornell-box.toml", "scenes/many-spheres.toml"], t
+assert all(r["trace"]["hits"] > 0 and r["trace"]["rays_per_s"] > 0 for r in t), t
+assert t[1]["hierarchy_spheres"] == 1000, t[1]  # the bundle's scene: 1000 small spheres in the hierarchy
 rows = [l.split("\t") for l in open(os.path.join(out, "kernel-budget.tsv")).read().splitlines()]
 assert rows[0][:3] == ["variant", "kernel", "build_s"] and len(rows) > 10, rows[:3]
 assert all(len(r) == len(rows[0]) for r in rows), "ragged table"
