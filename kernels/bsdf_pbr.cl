@@ -5,17 +5,24 @@
  *               height-correlated Smith visibility V = G2 / (4 |n.wo| |n.wi|)
  *   metal     = specular x Schlick(F0 = base colour, wo.h)
  *   dielectric= specular x Schlick(f0, wo.h) + base layer, f0 = ((ior - 1) / (ior + 1))^2
- *   base layer= (1 - Schlick(f0, n.wo)) (1 - Schlick(f0, n.wi)) / (1 - f0) x
- *               mix(base / pi, specular(wo, mirror(wi)) x base, transmission)
+ *   base layer= Appendix B's fresnel_mix, renormalised by the specular layer's albedo:
+ *               (1 - Schlick(f0, wo.h)) (1 - E(n.wo)) / (1 - G(n.wo)) base / pi  (diffuse), and
+ *               (1 - E(n.wo)) x specular(wo, mirror(wi)) x base  (thin transmission), mixed by
+ *               transmission; E = f0 S + B the Fresnel-weighted specular lobe's directional
+ *               albedo, G the mean of (1 - wo.h)^5 over cosine-distributed wi
  *   f         = mix(dielectric, metal, metallic)
- * The base layer's Fresnel weight is taken at the two directions, not at wo.h as Appendix B's
- * fresnel_mix does: that form returns up to 1.8 times the light it receives at grazing angles
- * (measured, docs/materials.md), this one at most 1 and stays reciprocal. The thin-walled
- * transmission (KHR_materials_transmission) continues through the surface: its lobe is the
- * specular lobe of wi mirrored through the tangent plane.
+ * Appendix B's own fresnel_mix reflects up to 1.8 times the light it receives at grazing angles
+ * (docs/materials.md); scaled so, the base layer's albedo is exactly (1 - E(n.wo)) x base: a white
+ * dielectric returns all it receives at every angle and roughness, the diffuse keeps the angular
+ * shape of fresnel_mix, and rough surfaces keep what the specular layer does not reflect (the
+ * earlier weight, the transmittance of a smooth coat at n.wo and n.wi, removed up to 40% of it at
+ * grazing views). S, B and G come from pbr_albedo_table.h, integrated in double when clpt is
+ * built (cmake/make_pbr_albedo_table.cpp). The thin-walled transmission (KHR_materials_transmission)
+ * continues through the surface: its lobe is the specular lobe of wi mirrored through the tangent
+ * plane.
  *
- * Sampling: one of three lobes by a probability from the Fresnel term at n.wo (specular: the
- * mean reflectance (1 - metallic) Schlick(f0) + metallic Schlick(base); diffuse and
+ * Sampling: one of three lobes by a probability from the specular layer's albedo at n.wo
+ * (specular: (1 - metallic) E + metallic E_metal, E_metal = mean(base) S + B; diffuse and
  * transmission share the rest by transmission), the diffuse lobe cosine-weighted, the specular
  * one by GGX's visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"),
  * the transmission as the specular mirrored. The weight is f cos / pdf with the pdf of the whole
@@ -53,6 +60,9 @@
 #define CLPT_HAS_PBR_VOLUME CLPT_HAS_PBR_TRANSMISSION
 #endif
 
+#if CLPT_HAS_PBR
+#include "pbr_albedo_table.h"
+
 /* pbrt-v4's "effectively smooth" bound: a lobe narrower than about 1e-3 radians, whose D
  * (1 / (pi alpha^2) at its peak) would also lose float precision as alpha shrinks further. */
 #define CLPT_PBR_DELTA_ALPHA ((real)1e-3f)
@@ -68,6 +78,7 @@ typedef struct PbrParams {
   int volume;        /* the transmission refracts into a volume (KHR_materials_volume, thickness > 0) */
   real ior;          /* index of refraction inside */
   real eta;          /* volume: index on the far side of the surface / on wo's side (the frame's) */
+  real table_s;      /* sqrt(roughness): the albedo table's roughness coordinate */
   CLPT_ABI_PAD(int, 1)
 } PbrParams;
 
@@ -83,6 +94,7 @@ CLPT_INLINE PbrParams pbr_params(Vec3 base, real metallic, real roughness, real 
   p.volume = volume;
   p.ior = ior;
   p.eta = ior;
+  p.table_s = clpt_sqrt(roughness);
   return p;
 }
 
@@ -136,28 +148,61 @@ CLPT_INLINE Vec3 ggx_sample_visible_normal(Vec3 wo, real alpha, real u0, real u1
   return v3_normalize(v3(alpha * nh.x, alpha * nh.y, fmax((real)1e-7f, nh.z)));
 }
 
-/* The lobes' sampling probabilities at wo (they sum to 1). */
+/* The specular layer's albedo at cos_o (pbr_albedo_table.h): S and B, E = F0 S + F90 B, and G,
+ * bilinear in (sqrt(cos_o), sqrt(roughness)) = (t, s), the table's grid. */
+typedef struct PbrAlbedo {
+  real s, b, g;
+  CLPT_ABI_PAD(real, 2)
+} PbrAlbedo;
+
+CLPT_INLINE PbrAlbedo pbr_albedo(real cos_o, real table_s) {
+  const real ft = clpt_sqrt(fmin(fmax(cos_o, (real)0), (real)1)) * (real)(CLPT_PBR_ALBEDO_NMU - 1);
+  const real fs = fmin(fmax(table_s, (real)0), (real)1) * (real)(CLPT_PBR_ALBEDO_NR - 1);
+  const int i = min((int)ft, CLPT_PBR_ALBEDO_NMU - 2), j = min((int)fs, CLPT_PBR_ALBEDO_NR - 2);
+  const real a = ft - (real)i, c = fs - (real)j;
+  const int k00 = 2 * (j * CLPT_PBR_ALBEDO_NMU + i), k10 = k00 + 2 * CLPT_PBR_ALBEDO_NMU;
+  const real w00 = ((real)1 - a) * ((real)1 - c), w01 = a * ((real)1 - c), w10 = ((real)1 - a) * c, w11 = a * c;
+  PbrAlbedo e;
+  e.s = w00 * (real)clpt_pbr_albedo[k00] + w01 * (real)clpt_pbr_albedo[k00 + 2] + w10 * (real)clpt_pbr_albedo[k10] +
+        w11 * (real)clpt_pbr_albedo[k10 + 2];
+  e.b = w00 * (real)clpt_pbr_albedo[k00 + 1] + w01 * (real)clpt_pbr_albedo[k00 + 3] +
+        w10 * (real)clpt_pbr_albedo[k10 + 1] + w11 * (real)clpt_pbr_albedo[k10 + 3];
+  e.g = ((real)1 - a) * (real)clpt_pbr_fresnel_mean[i] + a * (real)clpt_pbr_fresnel_mean[i + 1];
+  return e;
+}
+
+/* The lobes' sampling probabilities at wo (they sum to 1), and the base layer's weights there. */
 typedef struct PbrLobes {
   real diffuse;
   real specular;
   real transmission;
+  real base_keep;    /* (1 - metallic) (1 - E(n.wo)): the base layer's albedo per unit base colour */
+  real base_scale;   /* (1 - metallic) (1 - E(n.wo)) / (1 - G(n.wo)): fresnel_mix's diffuse scaled to it */
   CLPT_ABI_PAD(real, 2)
 } PbrLobes;
 
 CLPT_INLINE PbrLobes pbr_lobes(const PbrParams* p, real cos_o) {
-  const real w = schlick_weight(cos_o);
-  const real fd = p->f0 + ((real)1 - p->f0) * w;
+  PbrAlbedo e = pbr_albedo(cos_o, p->table_s);
+  /* A delta lobe's albedo is its Fresnel term at n.wo, exactly. */
+  const real sw = schlick_weight(cos_o);
+  e.s = p->delta ? (real)1 - sw : e.s;
+  e.b = p->delta ? sw : e.b;
+  const real e_dielectric = p->f0 * e.s + e.b;
+  const real fresnel_mean = p->f0 + ((real)1 - p->f0) * e.g;
   const real base_mean = (p->base.x + p->base.y + p->base.z) * (real)(1.0f / 3.0f);
-  const real fm = base_mean + ((real)1 - base_mean) * w;
-  /* The specular lobe keeps a floor: where its Fresnel estimate is 0 (a black metal seen head
-   * on), f may still be above 0 for other half vectors. */
-  const real specular = ((real)1 - p->metallic) * fd + p->metallic * fm + (real)1e-3f;
-  const real under = ((real)1 - p->metallic) * ((real)1 - fd) * base_mean;
+  const real e_metal = base_mean * e.s + e.b;
+  /* The specular lobe keeps a floor: where its albedo is 0 (a black metal seen head on), f may
+   * still be above 0 for other half vectors. */
+  const real specular = ((real)1 - p->metallic) * e_dielectric + p->metallic * e_metal + (real)1e-3f;
+  const real keep = ((real)1 - p->metallic) * fmax((real)0, (real)1 - e_dielectric);
+  const real under = keep * base_mean;
   const real total = specular + under;
   PbrLobes l;
   l.specular = specular / total;
   l.transmission = under * p->transmission / total;
   l.diffuse = (real)1 - l.specular - l.transmission;
+  l.base_keep = keep;
+  l.base_scale = keep / ((real)1 - fresnel_mean);
   return l;
 }
 
@@ -215,13 +260,11 @@ CLPT_INLINE Vec3 pbr_eval_local(const PbrParams* p, const PbrLobes* lobes, Vec3 
   const real w = schlick_weight(o_dot_h);
   const real fresnel = p->f0 + ((real)1 - p->f0) * w;
   const Vec3 fresnel_metal = v3_add(p->base, v3_scale(v3_sub(v3_splat((real)1), p->base), w));
-  const real under = ((real)1 - p->metallic) * ((real)1 - p->f0 - ((real)1 - p->f0) * schlick_weight(cos_o)) *
-                     ((real)1 - p->f0 - ((real)1 - p->f0) * schlick_weight(cos_i)) / ((real)1 - p->f0);
-  const Vec3 reflected =
-      v3_add(v3_add(v3_scale(p->base, under * ((real)1 - p->transmission) / CLPT_PI),
-                    v3_splat(((real)1 - p->metallic) * fresnel * specular)),
-             v3_scale(fresnel_metal, p->metallic * specular));
-  Vec3 transmitted = v3_scale(p->base, under * p->transmission * specular);
+  /* The base layer: fresnel_mix's diffuse at the half vector, scaled to the albedo 1 - E. */
+  const real diffuse = ((real)1 - fresnel) * lobes->base_scale * ((real)1 - p->transmission) / CLPT_PI;
+  const Vec3 reflected = v3_add(v3_add(v3_scale(p->base, diffuse), v3_splat(((real)1 - p->metallic) * fresnel * specular)),
+                                v3_scale(fresnel_metal, p->metallic * specular));
+  Vec3 transmitted = v3_scale(p->base, lobes->base_keep * p->transmission * specular);
   const real specular_pdf = p->delta ? (real)0 : ggx_reflection_pdf(alpha2, cos_o, h.z);
   const real p_above = lobes->diffuse * cos_i / CLPT_PI + lobes->specular * specular_pdf;
   real p_below = lobes->transmission * specular_pdf;
@@ -257,12 +300,11 @@ CLPT_INLINE Vec3 pbr_sample_local(const PbrParams* p, const PbrLobes* lobes, Vec
   Vec3 w = v3_scale(f_cos, *pdf > (real)0 ? (real)1 / *pdf : (real)0);
   /* Delta lobes: the specular's Fresnel at n.wo, the transmission straight on. */
   const real sw = schlick_weight(wo.z);
-  const real under = ((real)1 - p->metallic) * ((real)1 - p->f0) * ((real)1 - sw) * ((real)1 - sw);
   const Vec3 delta_specular = v3_scale(
       v3_add(v3_splat(((real)1 - p->metallic) * (p->f0 + ((real)1 - p->f0) * sw)),
              v3_scale(v3_add(p->base, v3_scale(v3_sub(v3_splat((real)1), p->base), sw)), p->metallic)),
       (real)1 / lobes->specular);
-  real delta_transmitted = under * p->transmission;
+  real delta_transmitted = lobes->base_keep * p->transmission;
   bool valid = pick_diffuse || reflected.z > (real)0;
 #if CLPT_HAS_PBR_VOLUME
   /* Smooth refraction: Schlick's transmittance, radiance scaled by 1 / eta^2; under total internal
@@ -327,5 +369,7 @@ CLPT_INLINE Vec3 bsdf_pbr_eval(Vec3 d, Vec3 n, const PbrParams* params, Vec3 wi,
   *pdf = ok ? *pdf : (real)0;
   return v3_select(ok, f_cos, v3_splat((real)0));
 }
+
+#endif /* CLPT_HAS_PBR */
 
 #endif

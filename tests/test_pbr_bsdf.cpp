@@ -1,16 +1,23 @@
 // The Pbr material (kernels/bsdf_pbr.cl) on the device, tested as pbrt's and Mitsuba's suites
-// test a BSDF: reciprocity and f >= 0 at random pairs; the white furnace (metallic 1, base colour
-// 1) against the directional albedo integrated on the host in double; albedo <= 1 for metals and
-// dielectrics; the sampler's density integrating to the share of samples it keeps; and a
+// test a BSDF: f >= 0 at random pairs, reciprocity of the metal; the white furnace (metallic 1,
+// base colour 1) against the directional albedo integrated on the host in double, and of the white
+// dielectric (exactly 1); the albedo table against the host's quadrature; f against its own
+// formula and the specification's Appendix B at view elevations down to 10 degrees, the light
+// behind, beside and in front; albedo <= 1 for metals and dielectrics; the sampler's density integrating to the share of samples it keeps; and a
 // chi-square test of the sampled directions against that density. Fixed seeds; thresholds from
 // each estimate's own standard error.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "device_test_util.h"
+#include "pbr_reference.h"
 #include "stat_test_util.h"
 
 namespace clpt::test {
@@ -62,31 +69,6 @@ std::pair<double, double> mc_albedo(const std::vector<ProbeOut>& s) {
   return {mean, std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n)};
 }
 
-// The white metal's albedo, f = D V Schlick(1) = D V, integrated in double over the half vector
-// (theta_h = atan(alpha tan(v pi / 2)) spreads the grid by the lobe's width).
-double white_metal_albedo(double cos_o, double roughness, int n = 600) {
-  const double alpha = std::max(roughness * roughness, 1e-4), a2 = alpha * alpha;
-  const double so = std::sqrt(1 - cos_o * cos_o);
-  double sum = 0;
-  for (int i = 0; i < n; ++i) {
-    const double v = (i + 0.5) / n, tv = std::tan(v * kPi / 2);
-    const double th = std::atan(alpha * tv), cv = std::cos(v * kPi / 2);
-    const double dth = alpha * (kPi / 2) / (cv * cv) / (1 + a2 * tv * tv) / n;
-    for (int j = 0; j < 2 * n; ++j) {
-      const double ph = (j + 0.5) / (2 * n) * 2 * kPi;
-      const double h[3] = {std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)};
-      const double oh = h[0] * so + h[2] * cos_o;
-      if (oh <= 0) continue;
-      const double ci = 2 * oh * h[2] - cos_o;
-      if (ci <= 0) continue;
-      const double k = h[2] * h[2] * (a2 - 1) + 1, d = a2 / (kPi * k * k);
-      const double vis = 0.5 / (ci * std::sqrt(a2 + (1 - a2) * cos_o * cos_o) + cos_o * std::sqrt(a2 + (1 - a2) * ci * ci));
-      sum += d * vis * ci * 4 * oh * std::sin(th) * dth * (kPi / n);  // d omega_i = 4 (o.h) d omega_h
-    }
-  }
-  return sum;
-}
-
 TEST(PbrBsdf, WhiteFurnaceMatchesTheAlbedoIntegratedOnTheHost) {
   const Pbr metal;  // metallic 1, base 1
   unsigned seed = 1;
@@ -98,6 +80,151 @@ TEST(PbrBsdf, WhiteFurnaceMatchesTheAlbedoIntegratedOnTheHost) {
       const double reference = white_metal_albedo(cos_o, roughness);
       EXPECT_NEAR(mean, reference, 4 * error + 2e-3) << "roughness " << roughness << ", cos " << cos_o;
       EXPECT_LE(reference, 1 + 1e-6);
+    }
+}
+
+// The albedo table (pbr_albedo_table.h, integrated when clpt is built) read through the kernel's
+// lookup, against the host's own quadrature: at the grid's points to the float's precision and the
+// quadratures' agreement (1.5e-4 measured), between them within the bilinear lookup's error
+// (3.1e-3 measured, at cos_o 0.003 and roughness 0.07; bounded here at 4e-3).
+TEST(PbrBsdf, AlbedoTableMatchesTheQuadrature) {
+  struct Point {
+    double cos_o, roughness;
+    bool on_grid;
+  };
+  std::vector<Point> points;
+  const int n_mu = 64, n_r = 32;  // CLPT_PBR_ALBEDO_NMU, _NR
+  for (int i : {3, 6, 12, 20, 32, 45, 63})
+    for (int j : {0, 4, 8, 12, 18, 24, 31}) {
+      const double t = double(i) / (n_mu - 1), r = double(j) / (n_r - 1);
+      points.push_back({t * t, r * r, true});
+      const double tm = (i - 0.5) / (n_mu - 1), rm = (j + (j < n_r - 1 ? 0.5 : -0.5)) / (n_r - 1);
+      if (rm * rm >= 0.04) points.push_back({tm * tm, rm * rm, false});  // off the narrowest lobes
+    }
+  std::vector<cl_float2> in;
+  for (const Point& p : points) in.push_back({{float(p.cos_o), float(p.roughness)}});
+  const auto out = run_probe<cl_float4>("probe_pbr_albedo", in.size(), upload(in));
+  double worst_on_grid = 0, worst_between = 0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Point& p = points[k];
+    const SpecularParts ref = specular_parts(p.cos_o, p.roughness);
+    const double g = fresnel_mean(p.cos_o);
+    const double tol = p.on_grid ? 5e-4 : 4e-3;
+    double& worst = p.on_grid ? worst_on_grid : worst_between;
+    worst = std::max({worst, std::fabs(out[k].s[0] - ref.s), std::fabs(out[k].s[1] - ref.b)});
+    EXPECT_NEAR(out[k].s[0], ref.s, tol) << "S at cos " << p.cos_o << ", roughness " << p.roughness;
+    EXPECT_NEAR(out[k].s[1], ref.b, tol) << "B at cos " << p.cos_o << ", roughness " << p.roughness;
+    EXPECT_NEAR(out[k].s[2], g, p.on_grid ? 2e-4 : 1e-3) << "G at cos " << p.cos_o;
+  }
+  std::printf("largest |S, B - quadrature|: %.2e at the grid's points, %.2e between them\n", worst_on_grid, worst_between);
+}
+
+// The white furnace of the dielectric: base colour 1, metallic 0. The base layer keeps exactly what
+// the specular layer does not reflect, so the albedo is 1 at every roughness (0 is the delta lobe)
+// and every angle, within the samples' error and the table's (above).
+TEST(PbrBsdf, WhiteDielectricReturnsAllItReceives) {
+  unsigned seed = 300;
+  for (float roughness : {0.0f, 0.02f, 0.1f, 0.3f, 0.5f, 0.7f, 1.0f})
+    for (double cos_o : {1.0, 0.5, 0.2, 0.05, 0.01}) {
+      Pbr m;
+      m.metallic = 0, m.roughness = roughness;
+      const auto [mean, error] = mc_albedo(sample(m, cos_o, 100000, seed++));
+      EXPECT_NEAR(mean, 1.0, 4 * error + 4e-3) << "roughness " << roughness << ", cos " << cos_o;
+    }
+}
+
+// A plane under a sun: the view at elevation view_deg, the light at 40 degrees, behind the camera
+// (azimuth 0, the light coming from the viewer's side), beside it (90) or in front (180).
+struct SunCase {
+  Material1 m;
+  double view_deg, light_azimuth_deg;
+  double wo[3], wi[3];
+};
+std::vector<SunCase> sun_cases(const std::vector<double>& roughnesses, const std::vector<double>& metallics) {
+  std::vector<SunCase> cases;
+  for (double roughness : roughnesses)
+    for (double metallic : metallics)
+      for (double base : {0.2, 0.5, 0.9})
+        for (double view : {90.0, 35.0, 20.0, 12.0, 10.0})
+          for (double azimuth : {0.0, 90.0, 180.0}) {
+            SunCase c{{base, metallic, roughness}, view, azimuth, {}, {}};
+            const double v = view * kPi / 180, l = 40 * kPi / 180, a = azimuth * kPi / 180;
+            const double wo[3] = {std::cos(v), 0, std::sin(v)};
+            const double wi[3] = {std::cos(l) * std::cos(a), std::cos(l) * std::sin(a), std::sin(l)};
+            std::copy(wo, wo + 3, c.wo), std::copy(wi, wi + 3, c.wi);
+            cases.push_back(c);
+          }
+  return cases;
+}
+
+// f cos_i of each case, evaluated on the device.
+std::vector<double> device_f_cos(const std::vector<SunCase>& cases) {
+  std::vector<double> out;
+  for (const SunCase& c : cases) {
+    Pbr m;
+    m.base = float(c.m.base), m.metallic = float(c.m.metallic), m.roughness = float(c.m.roughness);
+    const std::vector<cl_float4> pair = {{{float(c.wo[0]), float(c.wo[1]), float(c.wo[2]), 0}},
+                                         {{float(c.wi[0]), float(c.wi[1]), float(c.wi[2]), 0}}};
+    out.push_back(probe(m, pair)[0].eval.s[0]);
+  }
+  return out;
+}
+
+std::string describe(const SunCase& c) {
+  return "roughness " + std::to_string(c.m.roughness) + ", metallic " + std::to_string(c.m.metallic) + ", base " +
+         std::to_string(c.m.base) + ", view " + std::to_string(c.view_deg) + " deg, light azimuth " +
+         std::to_string(c.light_azimuth_deg);
+}
+
+// The device evaluates the model docs/materials.md writes, at every view elevation down to 10
+// degrees, the light behind, beside and in front: within the table's lookup error.
+TEST(PbrBsdf, MatchesItsFormulaAtEveryAngle) {
+  const auto cases = sun_cases({0.1, 0.3, 0.5, 0.7, 1.0}, {0.0, 0.5, 1.0});
+  const auto device = device_f_cos(cases);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const double expected = clpt_f(cases[i].m, cases[i].wo, cases[i].wi) * cases[i].wi[2];
+    EXPECT_NEAR(device[i], expected, 5e-3 * expected + 1e-6) << describe(cases[i]);
+  }
+}
+
+// Against the specification's Appendix B: metals exactly; rough dielectrics (roughness >= 0.6)
+// within 5% at every view down to 10 degrees; roughness 0.5 within 5% down to 20 degrees and at
+// most 10% darker below, where Appendix B's diffuse keeps more than the specular layer leaves
+// (docs/materials.md "The base layer" gives the figures).
+TEST(PbrBsdf, FollowsAppendixBAtEveryAngle) {
+  const auto cases = sun_cases({0.5, 0.6, 0.7, 0.85, 1.0}, {0.0, 1.0});
+  const auto device = device_f_cos(cases);
+  double worst_rough = 0;
+  std::string worst_case;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const SunCase& c = cases[i];
+    const double spec = appendix_b_f(c.m, c.wo, c.wi) * c.wi[2], ratio = device[i] / spec;
+    if (c.m.metallic == 1) {
+      EXPECT_NEAR(ratio, 1.0, 2e-3) << describe(c);
+    } else if (c.m.roughness >= 0.6 || c.view_deg >= 20) {
+      EXPECT_NEAR(ratio, 1.0, 0.05) << describe(c);
+      if (c.m.roughness >= 0.6 && std::fabs(ratio - 1) > worst_rough) worst_rough = std::fabs(ratio - 1), worst_case = describe(c);
+    } else {
+      EXPECT_GE(ratio, 0.90) << describe(c);
+      EXPECT_LE(ratio, 1.05) << describe(c);
+    }
+  }
+  std::printf("largest |clpt / Appendix B - 1| at roughness >= 0.6: %.4f (%s)\n", worst_rough, worst_case.c_str());
+  for (double view : {12.0, 10.0}) {
+    const SpecularParts e = specular_parts(std::sin(view * kPi / 180), 0.5);
+    std::printf("roughness 0.5, view %.0f deg: the specular layer's albedo E = %.3f\n", view, 0.04 * e.s + e.b);
+  }
+  // docs/materials.md's table: base 0.5, metallic 0, clpt / Appendix B by view (rows) and light.
+  std::printf("| roughness, view | behind | beside | in front |\n|---|---|---|---|\n");
+  for (double roughness : {0.5, 0.7, 1.0})
+    for (double view : {90.0, 35.0, 20.0, 12.0, 10.0}) {
+      std::printf("| %.1f, %.0f deg |", roughness, view);
+      for (size_t i = 0; i < cases.size(); ++i) {
+        const SunCase& c = cases[i];
+        if (c.m.base == 0.5 && c.m.metallic == 0 && c.m.roughness == roughness && c.view_deg == view)
+          std::printf(" %.3f |", device[i] / (appendix_b_f(c.m, c.wo, c.wi) * c.wi[2]));
+      }
+      std::printf("\n");
     }
 }
 
@@ -118,14 +245,17 @@ TEST(PbrBsdf, AlbedoIsAtMostOne) {
         }
 }
 
-// f(wo, wi) = f(wi, wo): f cos_i / cos_i either way round, at random pairs on both sides.
+// f >= 0 at random pairs on both sides, and f(wo, wi) = f(wi, wo) (f cos_i / cos_i either way
+// round) for the metal: the specular lobes are reciprocal. The base layer is not, as Appendix B's
+// fresnel_mix is not: it is scaled by the specular layer's albedo at wo (docs/materials.md).
 TEST(PbrBsdf, IsReciprocalAndNonNegative) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
   for (float roughness : {0.05f, 0.3f, 0.8f})
-    for (float transmission : {0.0f, 0.6f}) {
+    for (float metallic : {1.0f, 0.3f}) {
+      const float transmission = metallic < 1 ? 0.6f : 0.0f;
       Pbr m;
-      m.metallic = 0.3f, m.roughness = roughness, m.transmission = transmission, m.base = 0.8f;
+      m.metallic = metallic, m.roughness = roughness, m.transmission = transmission, m.base = 0.8f;
       std::vector<cl_float4> forward, backward;
       for (int i = 0; i < 2000; ++i) {
         const cl_float4 a = direction(0.02 + 0.98 * u(rng), 2 * kPi * u(rng));
@@ -141,7 +271,10 @@ TEST(PbrBsdf, IsReciprocalAndNonNegative) {
         const double cos_a = std::fabs(forward[2 * i].s[2]), cos_b = std::fabs(forward[2 * i + 1].s[2]);
         const double fab = f[i].eval.s[0] / cos_b, fba = g[i].eval.s[0] / cos_a;
         ASSERT_GE(fab, 0);
-        EXPECT_NEAR(fab, fba, 1e-4 * std::max(1.0, fab)) << "roughness " << roughness << " pair " << i;
+        ASSERT_GE(fba, 0);
+        if (metallic == 1) {
+          EXPECT_NEAR(fab, fba, 1e-4 * std::max(1.0, fab)) << "roughness " << roughness << " pair " << i;
+        }
       }
     }
 }

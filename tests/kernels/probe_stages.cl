@@ -189,3 +189,11 @@ __kernel void probe_pbr(float4 params, float4 shape, __global const float4* in, 
   out[3 * i + 1] = (float4)(weight.x, weight.y, weight.z, 0.0f);
   out[3 * i + 2] = (float4)(f_cos.x, f_cos.y, f_cos.z, eval_pdf);
 }
+
+/* The Pbr material's albedo table through its lookup (bsdf_pbr.cl, pbr_albedo): in[i] = (cos_o,
+ * roughness) -> (S, B, G, 0). */
+__kernel void probe_pbr_albedo(__global const float2* in, __global float4* out) {
+  const size_t i = get_global_id(0);
+  const PbrAlbedo e = pbr_albedo(in[i].x, sqrt(in[i].y));
+  out[i] = (float4)(e.s, e.b, e.g, 0.0f);
+}
