@@ -16,6 +16,14 @@ mkdir -p "$work/in/folder.exr"
 head -c 200 "$sky" > "$work/in/truncated.hdr"
 echo "not an image" > "$work/in/text.exr"
 cp "$sky" "$work/in/sky.hdr"
+# Float maps (PFM: a header, then little-endian floats, bottom row first) as lossy EXR compression
+# leaves them: two texels slightly negative; and one with a NaN.
+pfm() {  # pfm NAME R0 R1 ...: a 4 x 2 RGB map, one value per channel of each texel in file order
+  python3 -c 'import struct, sys; v = [float(x) for x in sys.argv[2:]]; open(sys.argv[1], "wb").write(b"PF\n4 2\n-1.0\n" + struct.pack("<%df" % len(v), *v))' "$@"
+}
+grey=(0.5 0.5 0.5)
+pfm "$work/in/negative.pfm" "${grey[@]}" 0.5 -6.1e-06 0.5 "${grey[@]}" "${grey[@]}" "${grey[@]}" -3e-04 0.5 0.5 "${grey[@]}" "${grey[@]}"
+pfm "$work/in/nan.pfm" "${grey[@]}" "${grey[@]}" 0.5 nan 0.5 "${grey[@]}" "${grey[@]}" "${grey[@]}" "${grey[@]}" "${grey[@]}"
 # A TOML scene naming each in its [environment] table (the file relative to the scene).
 toml_scene() {  # toml_scene NAME ENVIRONMENT_LINES
   printf '[camera]\nposition = [0.0, 1.0, 5.0]\nlook_at = [0.0, 1.0, 0.0]\n\n[[sphere]]\ncenter = [0.0, 1.0, 0.0]\nradius = 1.0\nmaterial = { type = "lambertian", reflectance = [0.5, 0.5, 0.5] }\n\n[environment]\n%b\n' "$2" > "$work/in/$1.toml"
@@ -53,6 +61,7 @@ expect 2 "--environment: $work/in/empty.hdr: the file is empty (0 bytes)" -- "${
 expect 2 "--environment: $work/in/folder.exr: is a directory" -- "${r[@]}" --environment "$work/in/folder.exr"
 expect 2 "--environment" "truncated.hdr" -- "${r[@]}" --environment "$work/in/truncated.hdr"
 expect 2 "--environment" "text.exr" -- "${r[@]}" --environment "$work/in/text.exr"
+expect 2 "--environment: $work/in/nan.pfm: texel (" "has the value nan (radiance must be finite)" -- "${r[@]}" --environment "$work/in/nan.pfm"
 expect 2 "--environment-strength -1: must be finite and >= 0" -- "${r[@]}" --environment "$sky" --environment-strength -1
 expect 2 "--environment-strength: the scene" "has no environment" -- "${r[@]}" --environment-strength 2
 expect 2 "--environment-rotation: the scene" "has no environment" -- "${r[@]}" --environment-rotation 90
@@ -101,6 +110,17 @@ if (cd "$work/out" && "$clpt" render "$scene" --spp 16 --width 16 --height 12 -q
   echo "ok: --environment on a TOML scene"
 else
   echo "FAIL: --environment on the book's room did not render"; failures=$((failures + 1))
+fi
+rm -rf "${work:?}/out"/*
+# Negative texels render, read as 0, with one notice naming the file, the count and the most negative.
+toml_scene negative 'file = "negative.pfm"'
+err=$(cd "$work/out" && "$clpt" render "$work/in/negative.toml" --spp 4 --width 8 --height 6 -o negative.exr 2>&1)
+status=$?
+notice="negative.toml:11:8: environment.file: negative.pfm: 2 texels are negative (the most negative -0.0003 at (1, 0)"
+if [[ $status -eq 0 && -f "$work/out/negative.exr" && "$err" == *"$notice"*"read as 0"* && $(grep -c "texels are negative" <<<"$err") -eq 1 ]]; then
+  echo "ok: negative texels read as 0 with one notice"
+else
+  echo "FAIL: the environment with negative texels: exit $status, stderr: $err"; failures=$((failures + 1))
 fi
 rm -rf "${work:?}/out"/*
 

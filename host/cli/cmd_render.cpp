@@ -303,6 +303,7 @@ int run(RenderOptions o) {
   if (!o.quiet && writes) {
     std::vector<std::string> warnings = scene.warnings;
     if (std::string unlit = unlit_scene_warning(scene); !unlit.empty()) warnings.push_back(std::move(unlit));
+    if (scene.environment && !scene.environment->notice.empty()) warnings.push_back(scene.environment->notice);
     for (std::string& warning : precision_range_warnings(scene, request.precision)) warnings.push_back(std::move(warning));
     for (const std::string& warning : warnings) std::fprintf(stderr, "clpt: warning: %s\n", warning.c_str());
   }

@@ -47,18 +47,37 @@ void load_environment_image(Environment& env, const std::string& path, ExitCode 
   auto rgb = std::make_shared<std::vector<float>>(texels * 3);
   const int channels = image.channels;
   const bool srgb = image.pixel_type == "uint8" || image.pixel_type == "uint16";
+  // Lossy compression (EXR's DWAA/DWAB, as Blender's own studio lights use) leaves a few texels
+  // slightly negative: read as 0, as Cycles and pbrt do, and said once. NaN and infinity are errors.
+  uint64_t negative = 0;
+  float most_negative = 0;
+  uint64_t most_negative_texel = 0;
   for (uint64_t t = 0; t < texels; ++t) {
     const float* p = &image.pixels[t * channels];
-    const float r = p[0], g = channels >= 3 ? p[1] : p[0], b = channels >= 3 ? p[2] : p[0];
-    for (const float v : {r, g, b}) {
-      if (!std::isfinite(v) || v < 0)
+    float c[3] = {p[0], channels >= 3 ? p[1] : p[0], channels >= 3 ? p[2] : p[0]};
+    bool clamped = false;
+    for (float& v : c) {
+      if (!std::isfinite(v))
         throw Error(code, prefix + "texel (" + std::to_string(t % image.width) + ", " +
                               std::to_string(t / image.width) + ") has the value " + number_text(v) +
-                              " (radiance must be finite and >= 0)");
+                              " (radiance must be finite)");
+      if (v < 0) {
+        if (v < most_negative) most_negative = v, most_negative_texel = t;
+        v = 0, clamped = true;
+      }
     }
-    (*rgb)[3 * t] = srgb ? srgb_to_linear(r) : r;
-    (*rgb)[3 * t + 1] = srgb ? srgb_to_linear(g) : g;
-    (*rgb)[3 * t + 2] = srgb ? srgb_to_linear(b) : b;
+    negative += clamped ? 1 : 0;
+    for (int k = 0; k < 3; ++k) (*rgb)[3 * t + k] = srgb ? srgb_to_linear(c[k]) : c[k];
+  }
+  env.negative_texels = negative;
+  env.notice.clear();
+  if (negative > 0) {
+    char most[32];
+    std::snprintf(most, sizeof most, "%.3g", double(most_negative));
+    env.notice = prefix + std::to_string(negative) + " texel" + (negative == 1 ? " is" : "s are") +
+                 " negative (the most negative " + most + " at (" +
+                 std::to_string(most_negative_texel % image.width) + ", " +
+                 std::to_string(most_negative_texel / image.width) + "), as lossy compression leaves them); read as 0";
   }
   env.width = image.width;
   env.height = image.height;
