@@ -12,6 +12,7 @@
 #include <string>
 
 #include "gltf_builder.h"
+#include "scene/environment.h"
 #include "scene/gltf_error.h"
 #include "scene/gltf_glb.h"
 #include "scene/gltf_loader.h"
@@ -144,6 +145,37 @@ TEST(GltfLoader, TriangleWithTheDefaultMaterialAndFramingView) {
   Scene lit = scene;
   lit.environment = Environment{};
   EXPECT_EQ(unlit_scene_warning(lit), "");
+}
+
+// A scene with no light of its own gets the default studio environment (docs/environment.md):
+// an image, white, 1 at the zenith falling linearly in cos(theta) to 0.25 at the nadir, with a
+// notice naming the scene; a lit scene is left alone; --environment none takes any environment away.
+TEST(GltfLoader, UnlitSceneGetsTheDefaultEnvironment) {
+  GltfBuilder b;
+  b.node({{"mesh", b.triangle_mesh(kTriangle)}});
+  Scene scene = load(b);
+  const std::string hash_before = scene.file_hash;
+  const std::string notice = light_unlit_scene(scene);
+  EXPECT_NE(notice.find("mem.glb: the scene has no lights"), std::string::npos) << notice;
+  EXPECT_NE(notice.find("default studio environment"), std::string::npos) << notice;
+  ASSERT_TRUE(scene.environment);
+  const Environment& e = *scene.environment;
+  ASSERT_TRUE(e.is_image());
+  ASSERT_EQ(e.width, kDefaultEnvironmentWidth);
+  ASSERT_EQ(e.height, kDefaultEnvironmentHeight);
+  for (int row = 0; row < e.height; ++row) {
+    const double y = std::cos(kPi * (row + 0.5) / e.height);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR((*e.rgb)[3 * size_t(row) * e.width + c], 0.625 + 0.375 * y, 1e-6);
+  }
+  EXPECT_NE(scene.file_hash, hash_before);  // checkpoints see the light
+  EXPECT_EQ(unlit_scene_warning(scene), "");
+  Scene again = scene;
+  EXPECT_EQ(light_unlit_scene(again), "");  // lit now: unchanged
+  EXPECT_EQ(again.environment->hash, e.hash);
+  apply_environment_overrides(again, EnvironmentOverrides{std::string("none"), std::nullopt, std::nullopt});
+  EXPECT_FALSE(again.environment);
+  EXPECT_NE(unlit_scene_warning(again).find("will be black"), std::string::npos);
+  EXPECT_THROW(apply_environment_overrides(again, EnvironmentOverrides{std::string("none"), 2.0, std::nullopt}), Error);
 }
 
 TEST(GltfLoader, TrsAndMatrixNodesComposeDownTheHierarchy) {

@@ -259,6 +259,9 @@ int run(RenderOptions o) {
   const double images_before = scene_image_seconds();
   Scene scene = load_scene_file(o.scene_path, GltfView{o.camera, o.width, o.height});
   apply_overrides(o, scene.settings);
+  // A scene with no light of its own is lit by the default environment (before the environment
+  // options, which may then scale or turn it), unless --environment names one or none.
+  const std::string default_light = o.environment.file ? "" : light_unlit_scene(scene);
   apply_environment_overrides(scene, o.environment);
   check_scene_limits(scene, {o.width || o.height, o.spp.has_value(), o.max_bounces.has_value()});
   times.image_load = scene_image_seconds() - images_before;
@@ -302,6 +305,7 @@ int run(RenderOptions o) {
   // extreme-scene tests proved for this preset (README "Numerical extremes").
   if (!o.quiet && writes) {
     std::vector<std::string> warnings = scene.warnings;
+    if (!default_light.empty()) warnings.push_back(default_light);
     if (std::string unlit = unlit_scene_warning(scene); !unlit.empty()) warnings.push_back(std::move(unlit));
     if (scene.environment && !scene.environment->notice.empty()) warnings.push_back(scene.environment->notice);
     for (std::string& warning : precision_range_warnings(scene, request.precision)) warnings.push_back(std::move(warning));
@@ -374,7 +378,8 @@ std::function<int()> add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"cap", "sphere"}));
   cmd->add_option("--environment", o->environment.file,
                   "Light the scene (TOML or glTF) with this equirectangular image (EXR, HDR, PNG, ...; replaces the "
-                  "scene's [environment]; docs/environment.md)");
+                  "scene's [environment]; docs/environment.md), or 'none': no environment, and no default light for "
+                  "a scene without lights");
   cmd->add_option("--environment-strength", o->environment.strength,
                   "Multiply the environment's radiance by S (default: the scene's, else 1)");
   cmd->add_option("--environment-rotation", o->environment.rotation_deg,

@@ -211,7 +211,7 @@ KernelFeatures features_for_scene(const Scene& scene, Precision precision) {
   }
   f.orthographic = scene.camera.projection == Projection::Orthographic;
   f.environment = !scene.environment              ? EnvironmentFeature::None
-                  : scene.environment->file.empty() ? EnvironmentFeature::Constant
+                  : !scene.environment->is_image() ? EnvironmentFeature::Constant
                                                     : EnvironmentFeature::Image;
   const TextureUse textures = texture_use(scene);
   // A material cut by its alpha needs the texturing buffer's records (kernels/alpha.cl) even

@@ -101,7 +101,7 @@ uint64_t light_entry_bound(const Scene& scene) {
 
 uint64_t environment_bytes_of(const Scene& scene) {
   if (!scene.environment) return 0;
-  const uint64_t texels = scene.environment->file.empty()
+  const uint64_t texels = !scene.environment->is_image()
                               ? 1
                               : uint64_t(scene.environment->width) * uint64_t(scene.environment->height);
   // RGB, the density and a (threshold, alias) pair per texel; a pair per row.

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "scene/gltf_loader.h"
 #include "scene/scene_image.h"
 #include "util/hash.h"
 
@@ -85,6 +86,35 @@ void load_environment_image(Environment& env, const std::string& path, ExitCode 
   env.rgb = std::move(rgb);
 }
 
+Environment default_environment() {
+  Environment env;
+  env.file = "";
+  env.what = "clpt's default studio environment";
+  env.width = kDefaultEnvironmentWidth;
+  env.height = kDefaultEnvironmentHeight;
+  auto rgb = std::make_shared<std::vector<float>>(size_t(kDefaultEnvironmentWidth) * kDefaultEnvironmentHeight * 3);
+  constexpr double kPi = 3.14159265358979323846;
+  for (int row = 0; row < kDefaultEnvironmentHeight; ++row) {
+    // The row's centre: theta = pi (row + 0.5) / height from the zenith (environment.cl's mapping).
+    const double y = std::cos(kPi * (row + 0.5) / kDefaultEnvironmentHeight);
+    const float radiance = float(0.25 + 0.75 * (1 + y) / 2);
+    for (int column = 0; column < kDefaultEnvironmentWidth; ++column)
+      for (int c = 0; c < 3; ++c) (*rgb)[3 * (size_t(row) * kDefaultEnvironmentWidth + column) + c] = radiance;
+  }
+  env.hash = hex64(fnv1a64(std::string_view(reinterpret_cast<const char*>(rgb->data()), rgb->size() * sizeof(float))));
+  env.rgb = std::move(rgb);
+  return env;
+}
+
+std::string light_unlit_scene(Scene& scene) {
+  if (unlit_scene_warning(scene).empty()) return "";
+  scene.environment = default_environment();
+  chain_environment_hash(scene);
+  return scene.file + ": the scene has no lights, no emissive material and no environment; lit by clpt's default "
+                      "studio environment (white, 1 at the zenith to 0.25 at the nadir; --environment FILE to light it "
+                      "otherwise, --environment none to render it black)";
+}
+
 void chain_environment_hash(Scene& scene) {
   if (!scene.environment) return;
   const Environment& e = *scene.environment;
@@ -100,17 +130,20 @@ void apply_environment_overrides(Scene& scene, const EnvironmentOverrides& o) {
     throw Error(ExitCode::Usage, "--environment-strength " + number_text(*o.strength) + ": must be finite and >= 0");
   if (o.rotation_deg && !std::isfinite(*o.rotation_deg))
     throw Error(ExitCode::Usage, "--environment-rotation " + number_text(*o.rotation_deg) + ": must be finite");
-  if (o.file) {
+  if (o.file && *o.file == "none") {
+    scene.environment.reset();
+  } else if (o.file) {
     Environment env;
     env.file = *o.file;
     env.what = "--environment";
     load_environment_image(env, *o.file, ExitCode::Usage);
     scene.environment = std::move(env);
   }
-  if (!scene.environment)
+  if (!scene.environment && (o.strength || o.rotation_deg))
     throw Error(ExitCode::Usage, std::string(o.strength ? "--environment-strength" : "--environment-rotation") +
                                      ": the scene " + scene.file +
                                      " has no environment (give one with --environment FILE or an [environment] table)");
+  if (!scene.environment) return;  // --environment none
   if (o.strength) scene.environment->strength = *o.strength;
   if (o.rotation_deg) scene.environment->rotation_deg = *o.rotation_deg;
   chain_environment_hash(scene);

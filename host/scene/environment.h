@@ -26,15 +26,27 @@ constexpr uint64_t kMaxEnvironmentTexels = uint64_t(1) << 26;
 // env.notice.
 void load_environment_image(Environment& env, const std::string& path, ExitCode code);
 
+// The light of a scene that has none (docs/environment.md, "The default light"): a soft white
+// studio gradient, radiance 1 at the zenith falling linearly in cos(theta) to 0.25 at the nadir
+// (0.625 at the horizon), as an image of kDefaultEnvironmentWidth x kDefaultEnvironmentHeight
+// texels, so that it is sampled like any environment image. env.what names it.
+constexpr int kDefaultEnvironmentWidth = 8, kDefaultEnvironmentHeight = 256;
+Environment default_environment();
+
+// Gives a scene without lights, emissive materials or an environment default_environment() and
+// returns a one-line notice naming the scene and what lit it; "" (the scene unchanged) when it
+// has light of its own.
+std::string light_unlit_scene(Scene& scene);
+
 // The command line's environment options (`clpt render`).
 struct EnvironmentOverrides {
-  std::optional<std::string> file;      // --environment FILE (relative to the working directory)
+  std::optional<std::string> file;      // --environment FILE (relative to the working directory), or "none"
   std::optional<double> strength;       // --environment-strength S (>= 0)
   std::optional<double> rotation_deg;   // --environment-rotation DEG
 };
 
 // Replaces the scene's environment by --environment's image (strength 1, rotation 0 unless
-// given) and sets strength and rotation; chains the environment into scene.file_hash. Throws
+// given), or removes it for --environment none, and sets strength and rotation; chains the environment into scene.file_hash. Throws
 // Error(Usage) naming the option for a bad file or value, and for a strength or rotation given
 // to a scene without an environment.
 void apply_environment_overrides(Scene& scene, const EnvironmentOverrides& overrides);

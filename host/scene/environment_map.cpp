@@ -135,7 +135,7 @@ std::vector<float> environment_device_data(const std::optional<Environment>& env
     const Environment& e = *environment;
     const double turns = e.rotation_deg / 360;
     header.rotation_turns = static_cast<float>(turns - std::floor(turns));
-    if (e.file.empty()) {
+    if (!e.is_image()) {
       header.kind = CLPT_ENVIRONMENT_CONSTANT;
       for (int c = 0; c < 3; ++c) {
         header.radiance[c] = static_cast<float>(e.color[c] * e.strength);

@@ -169,7 +169,7 @@ struct RenderSettings {
 // infinitely far, an equirectangular image (TOML [environment] file, --environment) or one colour,
 // times strength, turned rotation_deg about +Y.
 struct Environment {
-  std::string file;     // the image as named ("" for a colour)
+  std::string file;     // the image as named ("" for a colour and for the default light, environment.h)
   std::string what;     // what named it, for messages: "scene.toml:3:1: environment.file" or "--environment"
   Vec3 color{0, 0, 0};  // radiance when file is "", linear, >= 0
   double strength = 1;  // >= 0, multiplies the image or colour
@@ -181,6 +181,7 @@ struct Environment {
   // negative, said once in `notice` ("" when none; `clpt render` prints it as a warning).
   uint64_t negative_texels = 0;
   std::string notice;
+  bool is_image() const { return rgb != nullptr; }  // else one colour
 };
 
 struct Scene {
