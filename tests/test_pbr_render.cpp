@@ -13,6 +13,7 @@
 #include "device_test_util.h"
 #include "mesh_test_util.h"
 #include "pbr_reference.h"
+#include "plane_closed_form.h"
 #include "render_test_util.h"
 
 namespace clpt::test {
@@ -172,35 +173,20 @@ TEST(PbrRender, PlaneUnderASunFollowsTheFormulaAtAGrazingView) {
   const Material1 m{0.5, 0, 0.7};
   const double wo[3] = {std::cos(view), 0, std::sin(view)}, wi[3] = {std::cos(sun), 0, std::sin(sun)};
   const double expected = clpt_f(m, wo, wi) * wi[2], appendix_b = appendix_b_f(m, wo, wi) * wi[2];
-  Scene scene;
-  scene.file = "pbr-plane-sun";
+  Scene scene = lit_plane_scene("pbr-plane-sun");
   scene.camera.position = {0, 10 * std::sin(view), 10 * std::cos(view)};
-  scene.camera.look_at = {0, 0, 0};
-  scene.camera.projection = Projection::Orthographic;
+  scene.camera.up = {0, 1, 0};
   scene.camera.ortho_height = 0.5;
-  TriangleMesh plane;
-  plane.name = "floor";
-  plane.positions = {{-100, 0, -100}, {100, 0, -100}, {100, 0, 100}, {-100, 0, 100}};
-  plane.triangles = {{0, 2, 1}, {0, 3, 2}};
-  plane.material = pbr(m.base, m.metallic, m.roughness);
-  plane.material.reflectance = {m.base, m.base, m.base};
-  scene.meshes.push_back(plane);
+  scene.meshes[0].material = pbr(m.base, m.metallic, m.roughness);
+  scene.meshes[0].material.reflectance = {m.base, m.base, m.base};
   PunctualLight light;
   light.name = "sun";
   light.type = LightType::Directional;
   light.direction = {0, -std::sin(sun), -std::cos(sun)};  // travelling away from the camera's side
   light.intensity = {1, 1, 1};
   scene.lights.push_back(light);
-  scene.settings.estimator = "nee";
-  scene.settings.max_bounces = 2;
-  for (const FormCase& f : {FormCase{"megakernel", ExecutionForm::Megakernel, false},
-                            FormCase{"wavefront", ExecutionForm::Wavefront, false},
-                            FormCase{"generic", ExecutionForm::Megakernel, true}}) {
-    RenderRequest request = test_request(scene, 8, 8, 4, 3);
-    request.form = f.form;
-    request.generic_kernel = f.generic;
-    RenderReport report;
-    const auto image = run_render(request, report).mean_rgb();
+  for (const KernelForm& f : kPlaneForms) {
+    const std::vector<float> image = render_plane(scene, f, 4, 3).mean;
     double sum = 0;
     for (size_t i = 0; i < image.size(); ++i) {
       EXPECT_NEAR(image[i], expected, 5e-3 * expected) << f.name << ", value " << i;

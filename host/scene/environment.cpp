@@ -70,7 +70,6 @@ void load_environment_image(Environment& env, const std::string& path, ExitCode 
     negative += clamped ? 1 : 0;
     for (int k = 0; k < 3; ++k) (*rgb)[3 * t + k] = srgb ? srgb_to_linear(c[k]) : c[k];
   }
-  env.negative_texels = negative;
   env.notice.clear();
   if (negative > 0) {
     char most[32];

@@ -22,8 +22,7 @@ constexpr uint64_t kMaxEnvironmentTexels = uint64_t(1) << 26;
 // and decoded to linear; float and half files (EXR, HDR) are linear radiance as stored. Throws Error(`code`, "WHAT:
 // PATH: ...") where WHAT is env.what, for a missing file, a directory, an empty (0-byte) or
 // unreadable file (the file as env.file names it; the reader's own errors name `path`), an image of more than kMaxEnvironmentTexels texels, or a texel that is NaN
-// or infinite. Finite negative texels are read as 0 and counted in env.negative_texels and
-// env.notice.
+// or infinite. Finite negative texels are read as 0 and said in env.notice.
 void load_environment_image(Environment& env, const std::string& path, ExitCode code);
 
 // The light of a scene that has none (docs/environment.md, "The default light"): a soft white

@@ -178,8 +178,7 @@ struct Environment {
   std::shared_ptr<const std::vector<float>> rgb;  // width x height x 3 linear floats, row 0 the zenith
   std::string hash;     // FNV-1a 64 of the decoded texels, hex (file only)
   // Finite negative texels (lossy EXR compression leaves a few) read as 0: how many and the most
-  // negative, said once in `notice` ("" when none; `clpt render` prints it as a warning).
-  uint64_t negative_texels = 0;
+  // negative, said once ("" when none; `clpt render` prints it as a warning).
   std::string notice;
   bool is_image() const { return rgb != nullptr; }  // else one colour
 };
